@@ -1,0 +1,37 @@
+#include "core/pose.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dynvo {
+
+Pose PoseFromTum(const Eigen::Vector3d& t, double qx, double qy, double qz, double qw) {
+  Eigen::Quaterniond q(qw, qx, qy, qz);
+  q.normalize();
+  Pose pose = Pose::Identity();
+  pose.linear() = q.toRotationMatrix();
+  pose.translation() = t;
+  return pose;
+}
+
+Eigen::Quaterniond PoseQuaternion(const Pose& pose) {
+  Eigen::Quaterniond q(pose.rotation());
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1.0;
+  return q;
+}
+
+double RotationAngle(const Pose& pose) {
+  const double c = (pose.linear().trace() - 1.0) / 2.0;
+  return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t) {
+  Pose pose = Pose::Identity();
+  const double angle = axis_angle.norm();
+  if (angle > 0) pose.linear() = Eigen::AngleAxisd(angle, axis_angle / angle).toRotationMatrix();
+  pose.translation() = t;
+  return pose;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,25 @@
+#pragma once
+// Rigid poses. Frames are named in variables: `world_from_camera` maps camera coordinates
+// into the world frame (the TUM groundtruth convention), `camera_from_world` the inverse.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace dynvo {
+
+using Pose = Eigen::Isometry3d;
+
+// A pose from a translation and a quaternion given as (qx, qy, qz, qw) in TUM order;
+// the quaternion is normalised first.
+Pose PoseFromTum(const Eigen::Vector3d& t, double qx, double qy, double qz, double qw);
+
+// The quaternion of a pose, normalised, with qw >= 0.
+Eigen::Quaterniond PoseQuaternion(const Pose& pose);
+
+// Rotation angle of a pose in radians, in [0, pi].
+double RotationAngle(const Pose& pose);
+
+// Rodrigues exponential of an axis-angle vector (radians) and a translation.
+Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t);
+
+}  // namespace dynvo

@@ -1,0 +1,46 @@
+#include "core/pose.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace dynvo {
+namespace {
+
+TEST(Pose, FromTumNormalisesQuaternion) {
+  // (qx,qy,qz,qw) = 2 * (0, 0, sin(45deg), cos(45deg)): 90 degrees about z, not unit length.
+  const double s = std::sqrt(0.5);
+  const Pose p = PoseFromTum({1, 2, 3}, 0, 0, 2 * s, 2 * s);
+  EXPECT_NEAR((p.linear() * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(), 0, 1e-12);
+  EXPECT_EQ(p.translation(), Eigen::Vector3d(1, 2, 3));
+}
+
+TEST(Pose, QuaternionHasNonNegativeW) {
+  const Pose p = PoseFromTum({0, 0, 0}, 0.1, 0.2, 0.3, -0.9);
+  const Eigen::Quaterniond q = PoseQuaternion(p);
+  EXPECT_GE(q.w(), 0.0);
+  EXPECT_NEAR(q.norm(), 1.0, 1e-12);
+  EXPECT_NEAR((q.toRotationMatrix() - p.linear()).norm(), 0, 1e-12);
+}
+
+TEST(Pose, RotationAngleOfAxisAngle) {
+  const Pose p = PoseFromAxisAngle({0.3, -0.4, 0.0}, {0, 0, 0});
+  EXPECT_NEAR(RotationAngle(p), 0.5, 1e-12);
+  EXPECT_NEAR(RotationAngle(Pose::Identity()), 0.0, 1e-12);
+}
+
+TEST(Error, FileMessageNamesFileAndLine) {
+  EXPECT_EQ(FileMessage("a/rgb.txt", 7, "bad"), "a/rgb.txt:7: bad");
+  EXPECT_EQ(FileMessage("a/rgb.txt", 0, "missing"), "a/rgb.txt: missing");
+  try {
+    ThrowFileError("x.txt", 3, "expected 8 columns");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "x.txt:3: expected 8 columns");
+  }
+}
+
+}  // namespace
+}  // namespace dynvo
