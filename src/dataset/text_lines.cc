@@ -1,0 +1,57 @@
+#include "dataset/text_lines.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+std::vector<TextLine> SplitDataLines(const std::string& text) {
+  std::vector<TextLine> lines;
+  std::istringstream in(text);
+  std::string raw;
+  int number = 0;
+  while (std::getline(in, raw)) {
+    ++number;
+    TextLine line;
+    line.number = number;
+    std::string field;
+    for (char c : raw) {
+      if (c == ' ' || c == '\t' || c == ',' || c == '\r') {
+        if (!field.empty()) line.fields.push_back(std::move(field));
+        field.clear();
+      } else {
+        field.push_back(c);
+      }
+    }
+    if (!field.empty()) line.fields.push_back(std::move(field));
+    if (line.fields.empty() || line.fields[0][0] == '#') continue;
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+std::string ReadTextFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) ThrowFileError(path, 0, "cannot open file");
+  std::ostringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
+
+bool ParseDouble(const std::string& field, double* value) {
+  if (field.empty()) return false;
+  const char* begin = field.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  if (end != begin + field.size() || errno == ERANGE || !std::isfinite(v)) return false;
+  *value = v;
+  return true;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,60 @@
+#include "dataset/trajectory_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+#include "dataset/text_lines.h"
+
+namespace dynvo {
+
+Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
+  Trajectory trajectory;
+  for (const TextLine& line : SplitDataLines(text)) {
+    if (line.fields.size() != 8)
+      ThrowFileError(source, line.number,
+                     "expected 8 columns 'timestamp tx ty tz qx qy qz qw', got " +
+                         std::to_string(line.fields.size()));
+    double v[8];
+    for (int i = 0; i < 8; ++i)
+      if (!ParseDouble(line.fields[i], &v[i]))
+        ThrowFileError(source, line.number,
+                       "column " + std::to_string(i + 1) + " is not a finite number: '" +
+                           line.fields[i] + "'");
+    const double qnorm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
+    if (qnorm < 1e-9) ThrowFileError(source, line.number, "quaternion has zero length");
+    if (!trajectory.empty() && !(v[0] > trajectory.back().stamp))
+      ThrowFileError(source, line.number,
+                     "timestamps must strictly increase, got " + line.fields[0] +
+                         " after a larger or equal one");
+    trajectory.push_back({v[0], PoseFromTum({v[1], v[2], v[3]}, v[4], v[5], v[6], v[7])});
+  }
+  return trajectory;
+}
+
+Trajectory ReadTrajectory(const std::string& path) {
+  return ParseTrajectory(ReadTextFile(path), path);
+}
+
+std::string FormatTrajectory(const Trajectory& trajectory) {
+  std::string out;
+  char buffer[256];
+  for (const StampedPose& p : trajectory) {
+    const Eigen::Vector3d& t = p.world_from_camera.translation();
+    const Eigen::Quaterniond q = PoseQuaternion(p.world_from_camera);
+    std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f\n", p.stamp,
+                  t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    out += buffer;
+  }
+  return out;
+}
+
+void WriteTrajectory(const std::string& path, const Trajectory& trajectory) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) ThrowFileError(path, 0, "cannot write file");
+  out << FormatTrajectory(trajectory);
+  if (!out) ThrowFileError(path, 0, "write failed");
+}
+
+}  // namespace dynvo

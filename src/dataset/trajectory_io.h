@@ -1,0 +1,35 @@
+#pragma once
+// TUM trajectory files: one pose per line, `timestamp tx ty tz qx qy qz qw`
+// (world_from_camera), '#' comments and blank lines ignored, separators spaces, tabs or
+// commas (as the TUM benchmark scripts accept).
+
+#include <string>
+#include <vector>
+
+#include "core/pose.h"
+
+namespace dynvo {
+
+struct StampedPose {
+  double stamp = 0.0;                 // seconds
+  Pose world_from_camera = Pose::Identity();
+};
+
+using Trajectory = std::vector<StampedPose>;
+
+// Reads a TUM trajectory. Quaternions are normalised. Throws InputError naming the file and
+// line for: missing file, a line without exactly 8 numeric columns, a zero quaternion,
+// non-finite values, or stamps that do not strictly increase.
+Trajectory ReadTrajectory(const std::string& path);
+
+// Parses TUM trajectory text; `source` names it in error messages.
+Trajectory ParseTrajectory(const std::string& text, const std::string& source);
+
+// Writes a TUM trajectory (stamp with 6 decimals, pose with 7, qw >= 0), replacing the file.
+// Throws InputError when the file cannot be written.
+void WriteTrajectory(const std::string& path, const Trajectory& trajectory);
+
+// The TUM text of a trajectory, as WriteTrajectory writes it.
+std::string FormatTrajectory(const Trajectory& trajectory);
+
+}  // namespace dynvo
