@@ -1,6 +1,7 @@
 #include "dataset/text_lines.h"
 
 #include <cerrno>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -44,7 +45,8 @@ std::string ReadTextFile(const std::string& path) {
 }
 
 bool ParseDouble(const std::string& field, double* value) {
-  if (field.empty()) return false;
+  // strtod would skip leading white space; a field is a number only as a whole.
+  if (field.empty() || std::isspace(static_cast<unsigned char>(field[0]))) return false;
   const char* begin = field.c_str();
   char* end = nullptr;
   errno = 0;

@@ -24,11 +24,16 @@ Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
                            line.fields[i] + "'");
     const double qnorm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
     if (qnorm < 1e-9) ThrowFileError(source, line.number, "quaternion has zero length");
-    if (!trajectory.empty() && !(v[0] > trajectory.back().stamp))
+    if (!trajectory.empty() && v[0] < trajectory.back().stamp)
       ThrowFileError(source, line.number,
-                     "timestamps must strictly increase, got " + line.fields[0] +
-                         " after a larger or equal one");
-    trajectory.push_back({v[0], PoseFromTum({v[1], v[2], v[3]}, v[4], v[5], v[6], v[7])});
+                     "timestamps must increase, got " + line.fields[0] + " after a larger one");
+    const StampedPose pose{v[0], PoseFromTum({v[1], v[2], v[3]}, v[4], v[5], v[6], v[7])};
+    // A repeated stamp (real TUM files have them: fr2_desk repeats 1311868229.5760) keeps
+    // its last line, as the TUM scripts' dict does.
+    if (!trajectory.empty() && v[0] == trajectory.back().stamp)
+      trajectory.back() = pose;
+    else
+      trajectory.push_back(pose);
   }
   return trajectory;
 }

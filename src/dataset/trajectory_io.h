@@ -17,9 +17,10 @@ struct StampedPose {
 
 using Trajectory = std::vector<StampedPose>;
 
-// Reads a TUM trajectory. Quaternions are normalised. Throws InputError naming the file and
-// line for: missing file, a line without exactly 8 numeric columns, a zero quaternion,
-// non-finite values, or stamps that do not strictly increase.
+// Reads a TUM trajectory. Quaternions are normalised. A stamp repeated on consecutive lines
+// keeps the last line (as the TUM scripts do); the result's stamps strictly increase.
+// Throws InputError naming the file and line for: missing file, a line without exactly 8
+// numeric columns, a zero quaternion, non-finite values, or a stamp below the previous one.
 Trajectory ReadTrajectory(const std::string& path);
 
 // Parses TUM trajectory text; `source` names it in error messages.

@@ -1,0 +1,184 @@
+// Per-frame processing cost of the dynvo pipeline against OpenCV's RGB-D odometry peers
+// (cv::rgbd::RgbdOdometry, cv::rgbd::ICPOdometry) on the same frames, in the same process.
+// Frames are decoded into memory first, so only processing is timed (as in the paper and
+// ORB-SLAM2's reports). Prints medians over frames, the median over runs, the ratio to
+// RgbdOdometry and the per-stage split of our pipeline.
+//
+//   odometry_speed --dataset DIR [--config configs/paper.json] [--runs 3] [--frames N]
+//                  [--set key=value]... [--trajectories-out DIR] [--json FILE]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <opencv2/rgbd.hpp>
+
+#include "core/error.h"
+#include "dataset/trajectory_io.h"
+#include "dataset/tum_dataset.h"
+#include "odometry/odometry_config.h"
+#include "odometry/odometry_pipeline.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / v.size();
+}
+
+struct MethodResult {
+  std::string name;
+  std::vector<double> run_medians;  // median ms/frame of each run
+  std::vector<double> last_run;     // ms per frame of the last run
+  dynvo::Trajectory trajectory;     // of the last run
+};
+
+// Runs an OpenCV odometry frame to frame, chaining the relative motions.
+MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>& odometry,
+                     const std::vector<dynvo::RgbdFrame>& frames, int runs) {
+  MethodResult result{name, {}, {}, {}};
+  const cv::Mat no_mask;
+  for (int r = 0; r < runs; ++r) {
+    std::vector<double> times;
+    dynvo::Trajectory trajectory{{frames[0].stamp, dynvo::Pose::Identity()}};
+    dynvo::Pose world_from_camera = dynvo::Pose::Identity();
+    for (size_t i = 1; i < frames.size(); ++i) {
+      cv::Mat rt;
+      const auto start = Clock::now();
+      // OpenCV's Rt maps points of the source (previous) camera into the destination
+      // (current) camera: dst_p = Rt * src_p, i.e. current_from_previous.
+      const bool ok = odometry->compute(frames[i - 1].gray, frames[i - 1].depth, no_mask,
+                                        frames[i].gray, frames[i].depth, no_mask, rt);
+      times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+      if (ok) {
+        Eigen::Matrix4d m;
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b) m(a, b) = rt.at<double>(a, b);
+        dynvo::Pose current_from_previous(m);
+        world_from_camera = world_from_camera * current_from_previous.inverse();
+      }
+      trajectory.push_back({frames[i].stamp, world_from_camera});
+    }
+    result.run_medians.push_back(Median(times));
+    result.last_run = times;
+    result.trajectory = trajectory;
+  }
+  return result;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"odometry_speed: dynvo per-frame cost against OpenCV RgbdOdometry and ICPOdometry"};
+  std::string dataset_dir, config_path, trajectories_out, json_out;
+  std::vector<std::string> overrides;
+  int runs = 3, max_frames = 0;
+  app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
+  app.add_option("--config", config_path, "dynvo config (default: built-in = paper)");
+  app.add_option("--set", overrides, "config override key=value (repeatable)");
+  app.add_option("--runs", runs, "repetitions of each method (median over runs)")->check(CLI::Range(1, 100));
+  app.add_option("--frames", max_frames, "use at most this many frames (0 = all)");
+  app.add_option("--trajectories-out", trajectories_out, "write each method's trajectory here");
+  app.add_option("--json", json_out, "write the figures as JSON to this file");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
+    dynvo::TumDatasetOptions dataset_options = config.dataset;
+    dataset_options.camera = config.CameraOverride();
+    const dynvo::TumDataset dataset(dataset_dir, dataset_options);
+    size_t count = dataset.size();
+    if (max_frames > 0) count = std::min(count, static_cast<size_t>(max_frames));
+    std::vector<dynvo::RgbdFrame> frames;
+    for (size_t i = 0; i < count; ++i) frames.push_back(dataset.Load(i));
+    std::fprintf(stderr, "odometry_speed: %zu frames of %s (%dx%d) in memory, %d runs each\n",
+                 frames.size(), dataset.name().c_str(), dataset.camera().width,
+                 dataset.camera().height, runs);
+
+    // dynvo
+    MethodResult ours{"dynvo", {}, {}, {}};
+    std::map<std::string, std::vector<double>> stage_last;
+    for (int r = 0; r < runs; ++r) {
+      dynvo::OdometryPipeline pipeline(dataset.camera(), config);
+      std::vector<double> times;
+      dynvo::Trajectory trajectory;
+      stage_last.clear();
+      for (size_t i = 0; i < frames.size(); ++i) {
+        const cv::Mat next = i + 1 < frames.size() ? frames[i + 1].gray : cv::Mat();
+        const dynvo::FrameRecord rec = pipeline.Process(frames[i], next);
+        times.push_back(rec.times.processing_ms);
+        trajectory.push_back({rec.stamp, rec.world_from_camera});
+        stage_last["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
+        stage_last["features"].push_back(rec.times.features_ms);
+        stage_last["filter"].push_back(rec.times.filter_ms);
+        stage_last["match"].push_back(rec.times.match_ms);
+        stage_last["pose"].push_back(rec.times.pose_ms);
+        stage_last["map"].push_back(rec.times.map_ms);
+        stage_last["local_ba"].push_back(rec.times.local_ba_ms);
+      }
+      ours.run_medians.push_back(Median(times));
+      ours.last_run = times;
+      ours.trajectory = trajectory;
+    }
+
+    const cv::Mat K = dataset.camera().K();
+    cv::Mat K32;
+    K.convertTo(K32, CV_32F);
+    std::vector<MethodResult> results = {ours};
+    results.push_back(RunPeer("opencv_rgbd_odometry", cv::rgbd::RgbdOdometry::create(K32), frames, runs));
+    results.push_back(RunPeer("opencv_icp_odometry", cv::rgbd::ICPOdometry::create(K32), frames, runs));
+    const double reference = Median(results[1].run_medians);
+
+    nlohmann::json report;
+    report["dataset"] = dataset.name();
+    report["frames"] = frames.size();
+    report["runs"] = runs;
+    report["config"] = config_path.empty() ? "defaults" : config_path;
+    std::printf("per-frame processing time, %zu frames of %s, median over frames, median of %d runs\n",
+                frames.size(), dataset.name().c_str(), runs);
+    std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms",
+                "ratio_to_rgbd_odo");
+    for (const MethodResult& m : results) {
+      std::vector<double> sorted = m.last_run;
+      std::sort(sorted.begin(), sorted.end());
+      const double p90 = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
+      const double median = Median(m.run_medians);
+      std::printf("%-22s %10.2f %10.2f %10.2f %18.2f\n", m.name.c_str(), median, Mean(m.last_run), p90,
+                  median / reference);
+      report["methods"][m.name] = {{"median_ms", median}, {"mean_ms", Mean(m.last_run)},
+                                   {"p90_ms", p90}, {"ratio_to_rgbd_odometry", median / reference},
+                                   {"run_medians_ms", m.run_medians}};
+      if (!trajectories_out.empty()) {
+        std::filesystem::create_directories(trajectories_out);
+        dynvo::WriteTrajectory(trajectories_out + "/" + m.name + ".txt", m.trajectory);
+      }
+    }
+    std::printf("\ndynvo per-stage split (last run): median_ms mean_ms\n");
+    for (const auto& [stage, values] : stage_last) {
+      std::printf("  %-14s %8.3f %8.3f\n", stage.c_str(), Median(values), Mean(values));
+      report["stages"][stage] = {{"median_ms", Median(values)}, {"mean_ms", Mean(values)}};
+    }
+    if (!json_out.empty()) std::ofstream(json_out) << report.dump(2) << '\n';
+    return 0;
+  } catch (const dynvo::InputError& e) {
+    std::fprintf(stderr, "odometry_speed: error: %s\n", e.what());
+    return 1;
+  }
+}

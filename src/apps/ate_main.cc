@@ -1,0 +1,101 @@
+// ate: absolute trajectory error of an estimated TUM trajectory against groundtruth, with the
+// semantics of the TUM benchmark's evaluate_ate.py.
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+#include "dataset/trajectory_io.h"
+#include "eval/ate.h"
+#include "eval/metrics_report.h"
+
+namespace {
+
+// Writes `content` to `path`; refuses to replace an existing file unless `force`.
+void WriteOutput(const std::string& path, const std::string& content, bool force) {
+  if (!force && std::filesystem::exists(path))
+    dynvo::ThrowFileError(path, 0, "already exists (use --force to overwrite)");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) dynvo::ThrowFileError(path, 0, "cannot write file");
+  out << content;
+  if (!out) dynvo::ThrowFileError(path, 0, "write failed");
+}
+
+// ReadTrajectory, and an error naming the file when it holds no pose.
+dynvo::Trajectory ReadNonEmpty(const std::string& path) {
+  dynvo::Trajectory trajectory = dynvo::ReadTrajectory(path);
+  if (trajectory.empty()) dynvo::ThrowFileError(path, 0, "no poses in file");
+  return trajectory;
+}
+
+int Run(int argc, char** argv) {
+  CLI::App app{
+      "Absolute trajectory error (ATE) of an estimated TUM trajectory, as the TUM benchmark's "
+      "evaluate_ate.py computes it: stamps associated as associate.py does (greedy by "
+      "smallest gap, each stamp used once), the estimated positions (times --scale) aligned "
+      "onto the groundtruth by the closed-form rotation + translation (Horn, no scale), then "
+      "statistics of the position errors.",
+      "ate"};
+  std::string gt_path, est_path, aligned_out, pairs_out;
+  bool json = false, force = false;
+  dynvo::AteOptions options;
+  app.add_option("groundtruth", gt_path, "Groundtruth trajectory (TUM format)")->required();
+  app.add_option("estimate", est_path, "Estimated trajectory (TUM format)")->required();
+  app.add_option("--offset", options.offset,
+                 "Seconds added to estimated stamps before association")
+      ->capture_default_str();
+  app.add_option("--scale", options.scale, "Factor applied to estimated positions")
+      ->capture_default_str();
+  app.add_option("--max-difference", options.max_difference,
+                 "Largest stamp gap (seconds, exclusive) for associated pairs")
+      ->capture_default_str();
+  app.add_flag("--json", json, "Print one JSON object instead of text");
+  app.add_option("--aligned-out", aligned_out,
+                 "Write the whole estimate, scaled and aligned onto the groundtruth, as a TUM "
+                 "trajectory");
+  app.add_option("--pairs-out", pairs_out,
+                 "Write every associated pair as CSV (stamp_gt,stamp_est,trans_error_m)");
+  app.add_flag("--force", force, "Overwrite existing --aligned-out / --pairs-out files");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "ate: error: " << e.what() << " (see ate --help)\n";
+    return 2;
+  }
+
+  options.Check();
+  const dynvo::Trajectory gt = ReadNonEmpty(gt_path);
+  const dynvo::Trajectory est = ReadNonEmpty(est_path);
+  const dynvo::AteResult result = dynvo::ComputeAte(gt, est, options);
+  if (!pairs_out.empty()) WriteOutput(pairs_out, dynvo::AtePairsCsv(result), force);
+  if (!aligned_out.empty())
+    WriteOutput(aligned_out,
+                dynvo::FormatTrajectory(
+                    dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
+                force);
+  if (json) {
+    nlohmann::json j = dynvo::AteJson(result, options);
+    j["groundtruth"] = gt_path;
+    j["estimate"] = est_path;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << dynvo::FormatAteText(result);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "ate: error: " << e.what() << "\n";
+    return 1;
+  }
+}

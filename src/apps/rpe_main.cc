@@ -1,0 +1,111 @@
+// rpe: relative pose error of an estimated TUM trajectory against groundtruth, with the
+// semantics of the TUM benchmark's evaluate_rpe.py.
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+#include "dataset/trajectory_io.h"
+#include "eval/metrics_report.h"
+#include "eval/rpe.h"
+
+namespace {
+
+// Writes `content` to `path`; refuses to replace an existing file unless `force`.
+void WriteOutput(const std::string& path, const std::string& content, bool force) {
+  if (!force && std::filesystem::exists(path))
+    dynvo::ThrowFileError(path, 0, "already exists (use --force to overwrite)");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) dynvo::ThrowFileError(path, 0, "cannot write file");
+  out << content;
+  if (!out) dynvo::ThrowFileError(path, 0, "write failed");
+}
+
+// ReadTrajectory, and an error naming the file when it holds no pose.
+dynvo::Trajectory ReadNonEmpty(const std::string& path) {
+  dynvo::Trajectory trajectory = dynvo::ReadTrajectory(path);
+  if (trajectory.empty()) dynvo::ThrowFileError(path, 0, "no poses in file");
+  return trajectory;
+}
+
+int Run(int argc, char** argv) {
+  CLI::App app{
+      "Relative pose error (RPE) of an estimated TUM trajectory, as the TUM benchmark's "
+      "evaluate_rpe.py --fixed_delta computes it: for every estimated pose i, j is the pose "
+      "'closest' to index_i + delta; stamps are looked up in the groundtruth without "
+      "interpolation and pairs more than twice the median groundtruth interval away are "
+      "dropped. Unlike the script, every pair is used (the script samples 10000 at random "
+      "when there are more), so results are deterministic.",
+      "rpe"};
+  std::string gt_path, est_path, delta_unit = "s", closest = "benchmark", pairs_out;
+  bool all_pairs = false, json = false, force = false;
+  dynvo::RpeOptions options;
+  app.add_option("groundtruth", gt_path, "Groundtruth trajectory (TUM format)")->required();
+  app.add_option("estimate", est_path, "Estimated trajectory (TUM format)")->required();
+  app.add_option("--delta", options.delta, "Fixed delta between compared poses, in --delta-unit")
+      ->capture_default_str();
+  app.add_option("--delta-unit", delta_unit,
+                 "Unit of delta: s (seconds), f (frames), m (path length), rad or deg "
+                 "(cumulative rotation)")
+      ->check(CLI::IsMember({"s", "f", "m", "rad", "deg"}))
+      ->capture_default_str();
+  app.add_flag("--all-pairs", all_pairs,
+               "Compare every ordered pose pair (i, j) instead of a fixed delta: global "
+               "consistency, not drift per second (the script samples these at random)");
+  app.add_option("--offset", options.offset,
+                 "Seconds added to estimated stamps before the groundtruth lookup")
+      ->capture_default_str();
+  app.add_option("--scale", options.scale, "Factor applied to estimated translations")
+      ->capture_default_str();
+  app.add_option("--closest", closest,
+                 "How the 'closest' index and stamp are found: benchmark (the script's binary "
+                 "search, reproduces published numbers) or nearest (true nearest)")
+      ->check(CLI::IsMember({"benchmark", "nearest"}))
+      ->capture_default_str();
+  app.add_flag("--json", json, "Print one JSON object instead of text");
+  app.add_option("--pairs-out", pairs_out,
+                 "Write every compared pair as CSV (stamp_est_0,stamp_est_1,stamp_gt_0,"
+                 "stamp_gt_1,trans_error_m,rot_error_deg)");
+  app.add_flag("--force", force, "Overwrite an existing --pairs-out file");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "rpe: error: " << e.what() << " (see rpe --help)\n";
+    return 2;
+  }
+
+  options.fixed_delta = !all_pairs;
+  options.unit = dynvo::ParseDeltaUnit(delta_unit);
+  options.closest =
+      closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
+  options.Check();
+  const dynvo::Trajectory gt = ReadNonEmpty(gt_path);
+  const dynvo::Trajectory est = ReadNonEmpty(est_path);
+  const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
+  if (!pairs_out.empty()) WriteOutput(pairs_out, dynvo::RpePairsCsv(result), force);
+  if (json) {
+    nlohmann::json j = dynvo::RpeJson(result, options);
+    j["groundtruth"] = gt_path;
+    j["estimate"] = est_path;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << dynvo::FormatRpeText(result);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "rpe: error: " << e.what() << "\n";
+    return 1;
+  }
+}

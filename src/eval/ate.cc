@@ -1,0 +1,92 @@
+#include "eval/ate.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "eval/rigid_alignment.h"
+#include "eval/stamp_association.h"
+
+namespace dynvo {
+namespace {
+
+std::string Number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::vector<double> Stamps(const Trajectory& trajectory, const char* name) {
+  std::vector<double> stamps;
+  stamps.reserve(trajectory.size());
+  for (const StampedPose& p : trajectory) {
+    if (!stamps.empty() && !(p.stamp > stamps.back()))
+      throw InputError(std::string(name) + " trajectory: stamps must strictly increase, got " +
+                       Number(p.stamp) + " after " + Number(stamps.back()));
+    stamps.push_back(p.stamp);
+  }
+  return stamps;
+}
+
+}  // namespace
+
+void AteOptions::Check() const {
+  if (!std::isfinite(offset)) throw InputError("ate.offset must be finite, got " + Number(offset));
+  if (!std::isfinite(scale) || !(scale > 0.0))
+    throw InputError("ate.scale must be a finite number > 0, got " + Number(scale));
+  if (!std::isfinite(max_difference) || !(max_difference > 0.0))
+    throw InputError("ate.max_difference must be a finite number > 0, got " +
+                     Number(max_difference));
+}
+
+std::string AteVariant(const AteOptions& options) {
+  return "Horn alignment (rotation + translation, no scale), max difference " +
+         Number(options.max_difference) + " s, offset " + Number(options.offset) +
+         " s, scale " + Number(options.scale);
+}
+
+AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
+  options.Check();
+  const std::vector<double> stamps_gt = Stamps(gt, "groundtruth");
+  const std::vector<double> stamps_est = Stamps(est, "estimated");
+  const std::vector<StampMatch> matches =
+      AssociateStamps(stamps_gt, stamps_est, options.offset, options.max_difference);
+  if (matches.size() < 2)
+    throw InputError("only " + std::to_string(matches.size()) +
+                     " estimated poses have a groundtruth stamp within " +
+                     Number(options.max_difference) + " s (offset " + Number(options.offset) +
+                     " s), need at least 2: do the files belong to the same sequence?");
+
+  std::vector<Eigen::Vector3d> positions_gt, positions_est;
+  positions_gt.reserve(matches.size());
+  positions_est.reserve(matches.size());
+  for (const StampMatch& m : matches) {
+    positions_gt.push_back(gt[m.first].world_from_camera.translation());
+    positions_est.push_back(est[m.second].world_from_camera.translation() * options.scale);
+  }
+  AteResult result;
+  result.variant = AteVariant(options);
+  result.gt_from_est = AlignRigid(positions_est, positions_gt);
+  std::vector<double> errors;
+  errors.reserve(matches.size());
+  for (std::size_t k = 0; k < matches.size(); ++k) {
+    const double error = (result.gt_from_est * positions_est[k] - positions_gt[k]).norm();
+    errors.push_back(error);
+    result.pairs.push_back({stamps_gt[matches[k].first], stamps_est[matches[k].second], error});
+  }
+  result.translation_m = Summarize(errors);
+  return result;
+}
+
+Trajectory AlignTrajectory(const Trajectory& est, const Pose& gt_from_est, double scale) {
+  Trajectory aligned;
+  aligned.reserve(est.size());
+  for (const StampedPose& p : est) {
+    Pose scaled = p.world_from_camera;
+    scaled.translation() *= scale;
+    aligned.push_back({p.stamp, gt_from_est * scaled});
+  }
+  return aligned;
+}
+
+}  // namespace dynvo

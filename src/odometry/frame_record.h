@@ -1,0 +1,45 @@
+#pragma once
+// What the pipeline reports for one frame: the pose, per-stage wall times, feature counts and
+// states. One row of timing.csv.
+
+#include <optional>
+#include <string>
+
+#include "core/pose.h"
+#include "odometry/mask_quality.h"
+#include "tracking/tracking_state.h"
+
+namespace dynvo {
+
+struct StageTimes {
+  double load_ms = 0;          // decoding the PNGs (in the loader thread when preloading)
+  double dynamic_mask_ms = 0;  // KLT, homography, differencing, morphology, all rounds
+  double features_ms = 0;      // ORB extraction, spreading, back-projection
+  double filter_ms = 0;        // removing features inside the mask
+  double match_ms = 0;         // projection matching to the local map
+  double pose_ms = 0;          // EPnP RANSAC and Ceres refinement
+  double map_ms = 0;           // keyframe insertion and map upkeep
+  double local_ba_ms = 0;      // local bundle adjustment (keyframes only)
+  double processing_ms = 0;    // everything after loading, wall time
+};
+
+struct FrameRecord {
+  size_t index = 0;
+  double stamp = 0;
+  Pose world_from_camera = Pose::Identity();
+  StageTimes times;
+  int features_total = 0;
+  int features_kept = 0;
+  int features_removed = 0;
+  bool mask_ok = false;       // a dynamic mask was computed this frame
+  std::string mask_note;      // why not, when the mask stage is on and failed
+  double dynamic_ratio = 0;   // share of pixels marked dynamic
+  TrackingState state = TrackingState::kInitializing;
+  std::string tracking_note;
+  int num_matches = 0;
+  int num_inliers = 0;
+  bool keyframe = false;
+  std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
+};
+
+}  // namespace dynvo

@@ -1,0 +1,189 @@
+#include "odometry/odometry_config.h"
+
+#include <fstream>
+
+#include "core/error.h"
+#include "dataset/tum_camera.h"
+
+namespace dynvo {
+
+void RunOptions::Check() const {
+  if (max_frames < 0)
+    throw InputError("run.max_frames must be >= 0 (0 = all), got " + std::to_string(max_frames));
+}
+
+void OdometryConfig::Check() const {
+  dataset.Check();
+  if (camera.source == "custom") camera.custom.Check("camera (source \"custom\")");
+  klt.Check();
+  homography.Check();
+  dynamic_mask.Check();
+  features.Check();
+  tracker.Check();
+  run.Check();
+}
+
+std::optional<Camera> OdometryConfig::CameraOverride() const {
+  if (camera.source == "auto") return std::nullopt;
+  if (camera.source == "custom") return camera.custom;
+  if (camera.source == "fr1") return TumCameraForSequence("freiburg1");
+  if (camera.source == "fr2") return TumCameraForSequence("freiburg2");
+  if (camera.source == "fr3") return TumCameraForSequence("freiburg3");
+  return TumCameraForSequence("");  // ros_default
+}
+
+void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
+  // dataset
+  r->Bind("dataset.max_time_difference", &c->dataset.max_time_difference,
+          "seconds; RGB and depth stamps further apart are not associated");
+  r->Bind("dataset.depth_factor", &c->dataset.depth_factor, "depth PNG value per metre (TUM: 5000)");
+  r->Bind("dataset.undistort", &c->dataset.undistort,
+          "remap images to an undistorted pinhole camera when the camera has distortion");
+  // camera
+  r->BindChoice(
+      "camera.source", {"auto", "fr1", "fr2", "fr3", "ros_default", "custom"},
+      [c] { return c->camera.source; }, [c](const std::string& s) { c->camera.source = s; },
+      "intrinsics: auto = camera.json, else TUM camera by folder name (freiburg1/2/3), else ROS default");
+  r->Bind("camera.width", &c->camera.custom.width, "pixels (source \"custom\")");
+  r->Bind("camera.height", &c->camera.custom.height, "pixels (source \"custom\")");
+  r->Bind("camera.fx", &c->camera.custom.fx, "pixels (source \"custom\")");
+  r->Bind("camera.fy", &c->camera.custom.fy, "pixels (source \"custom\")");
+  r->Bind("camera.cx", &c->camera.custom.cx, "pixels (source \"custom\")");
+  r->Bind("camera.cy", &c->camera.custom.cy, "pixels (source \"custom\")");
+  const char* dist_names[5] = {"k1", "k2", "p1", "p2", "k3"};
+  for (int i = 0; i < 5; ++i)
+    r->Bind(std::string("camera.") + dist_names[i], &c->camera.custom.distortion[i],
+            "distortion coefficient (OpenCV order, source \"custom\")");
+  // ego-motion
+  r->Bind("ego_motion.max_corners", &c->klt.max_corners, "KLT corners detected in frame t-1");
+  r->Bind("ego_motion.quality_level", &c->klt.quality_level, "corner quality relative to the best");
+  r->Bind("ego_motion.min_distance_px", &c->klt.min_distance_px, "minimum spacing of KLT corners");
+  r->Bind("ego_motion.window_size_px", &c->klt.window_size_px, "KLT window side");
+  r->Bind("ego_motion.pyramid_levels", &c->klt.pyramid_levels, "KLT pyramid levels above the base");
+  r->Bind("ego_motion.max_forward_backward_error_px", &c->klt.max_forward_backward_error_px,
+          "tracks whose back-tracking misses by more are dropped");
+  r->Bind("ego_motion.ransac_threshold_px", &c->homography.ransac_threshold_px,
+          "homography RANSAC inlier threshold");
+  r->Bind("ego_motion.ransac_iterations", &c->homography.ransac_iterations,
+          "homography RANSAC hypotheses at most");
+  r->Bind("ego_motion.min_inliers", &c->homography.min_inliers,
+          "fewer homography inliers: no mask for the frame");
+  r->Bind("ego_motion.refine", &c->homography.refine,
+          "Levenberg-Marquardt refinement of H on inliers (paper eq. 4)");
+  r->Bind("ego_motion.refine_iterations", &c->homography.refine_iterations, "LM iterations");
+  r->Bind("ego_motion.seed", &c->homography.seed, "homography RANSAC random seed");
+  // dynamic mask
+  r->Bind("dynamic_mask.enabled", &c->dynamic_mask_enabled,
+          "false = baseline: no dynamic handling, everything else identical");
+  DynamicMaskOptions* m = &c->dynamic_mask;
+  r->BindChoice(
+      "dynamic_mask.threshold", {"otsu", "fixed"}, [m] { return ToString(m->threshold); },
+      [m](const std::string& s) { m->threshold = ParseThresholdMethod(s, "dynamic_mask.threshold"); },
+      "binarisation of the difference image (paper: otsu)");
+  r->Bind("dynamic_mask.fixed_threshold", &m->fixed_threshold, "grey levels, with threshold \"fixed\"");
+  r->Bind("dynamic_mask.erode_kernel_size", &m->erode_kernel_size, "pixels (paper: 4)");
+  r->BindChoice(
+      "dynamic_mask.erode_shape", {"rect", "ellipse", "cross"}, [m] { return ToString(m->erode_shape); },
+      [m](const std::string& s) { m->erode_shape = ParseMorphShape(s, "dynamic_mask.erode_shape"); },
+      "erosion kernel shape");
+  r->Bind("dynamic_mask.erode_iterations", &m->erode_iterations, "erosion iterations (paper: 2)");
+  r->Bind("dynamic_mask.dilate_kernel_size", &m->dilate_kernel_size, "pixels (paper: 16)");
+  r->BindChoice(
+      "dynamic_mask.dilate_shape", {"rect", "ellipse", "cross"}, [m] { return ToString(m->dilate_shape); },
+      [m](const std::string& s) { m->dilate_shape = ParseMorphShape(s, "dynamic_mask.dilate_shape"); },
+      "dilation kernel shape");
+  r->Bind("dynamic_mask.dilate_iterations", &m->dilate_iterations, "dilation iterations (paper: 1)");
+  r->BindChoice(
+      "dynamic_mask.backward", {"none", "reverse_pair", "triplet"}, [m] { return ToString(m->backward); },
+      [m](const std::string& s) { m->backward = ParseBackwardMode(s, "dynamic_mask.backward"); },
+      "backward detection: none, t-1 against t, or t+1 against t (one frame of latency)");
+  r->Bind("dynamic_mask.rounds", &m->rounds, "mask / homography re-estimation rounds");
+  // features
+  FeatureOptions* f = &c->features;
+  r->Bind("features.num_features", &f->num_features, "ORB features per frame");
+  r->Bind("features.scale_factor", &f->scale_factor, "pyramid scale between levels");
+  r->Bind("features.num_levels", &f->num_levels, "pyramid levels");
+  r->Bind("features.fast_threshold", &f->fast_threshold, "FAST threshold");
+  r->Bind("features.min_fast_threshold", &f->min_fast_threshold, "FAST threshold retried in empty cells");
+  r->BindChoice(
+      "features.distribution", {"quadtree", "grid", "none"}, [f] { return ToString(f->distribution); },
+      [f](const std::string& s) { f->distribution = ParseFeatureDistribution(s, "features.distribution"); },
+      "how features are spread over the image");
+  r->Bind("features.min_depth_m", &f->min_depth_m, "nearer depth gives no 3D point");
+  r->Bind("features.max_depth_m", &f->max_depth_m, "farther depth gives no 3D point");
+  // matching, pose, map, keyframes, local BA, tracking
+  TrackerOptions* t = &c->tracker;
+  r->Bind("matching.search_radius_px", &t->matching.search_radius_px,
+          "search window around a map point's predicted projection");
+  r->Bind("matching.max_descriptor_distance", &t->matching.max_descriptor_distance, "Hamming distance");
+  r->Bind("matching.ratio", &t->matching.ratio, "best / second-best descriptor distance must be below");
+  r->Bind("matching.check_orientation", &t->matching.check_orientation, "rotation-consistency check");
+  r->Bind("pose.ransac_threshold_px", &t->pose.ransac_threshold_px, "EPnP RANSAC inlier threshold");
+  r->Bind("pose.ransac_iterations", &t->pose.ransac_iterations, "EPnP RANSAC hypotheses");
+  r->Bind("pose.min_inliers", &t->pose.min_inliers, "fewer inliers: pose estimation fails");
+  r->Bind("pose.seed", &t->pose.seed, "EPnP RANSAC random seed");
+  r->Bind("pose.huber_delta_px", &t->pose.huber_delta_px, "Huber loss scale (paper eq. 5)");
+  r->Bind("pose.refine_iterations", &t->pose.refine_iterations, "Ceres iterations per round");
+  r->Bind("pose.refine_rounds", &t->pose.refine_rounds, "refine, drop outliers, refine again");
+  r->Bind("pose.outlier_threshold_px", &t->pose.outlier_threshold_px, "residual above: outlier");
+  r->Bind("map.max_keyframes", &t->map.max_keyframes, "keyframes kept in the local map");
+  r->Bind("map.max_points", &t->map.max_points, "map points kept at most");
+  r->Bind("keyframes.max_frames_between", &t->keyframes.max_frames_between,
+          "a keyframe at least this often");
+  r->Bind("keyframes.min_tracked_ratio", &t->keyframes.min_tracked_ratio,
+          "keyframe when tracked points fall below this share of the reference keyframe's");
+  r->Bind("keyframes.min_translation_m", &t->keyframes.min_translation_m,
+          "keyframe after this much translation");
+  r->Bind("keyframes.min_rotation_deg", &t->keyframes.min_rotation_deg, "keyframe after this much rotation");
+  r->Bind("local_ba.enabled", &t->local_ba.enabled, "local bundle adjustment at each keyframe");
+  r->Bind("local_ba.window_keyframes", &t->local_ba.window_keyframes,
+          "recent keyframes optimised; older covisible ones fixed");
+  r->Bind("local_ba.max_iterations", &t->local_ba.max_iterations, "Ceres iterations");
+  r->Bind("local_ba.huber_delta_px", &t->local_ba.huber_delta_px, "Huber loss scale");
+  r->Bind("local_ba.outlier_threshold_px", &t->local_ba.outlier_threshold_px,
+          "observations above are dropped after BA");
+  r->Bind("tracking.min_matches", &t->min_matches, "fewer map matches: wider search, then lost");
+  // run
+  r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
+  r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");
+}
+
+OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std::string>& overrides) {
+  OdometryConfig config;
+  ConfigRegistry registry;
+  RegisterConfigKeys(&config, &registry);
+  if (!path.empty()) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open config file");
+    nlohmann::json json;
+    try {
+      json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(path + ": not valid JSON: " + e.what());
+    }
+    registry.Apply(json, path);
+  }
+  for (const std::string& assignment : overrides) registry.ApplyOverride(assignment);
+  try {
+    config.Check();
+  } catch (const InputError& e) {
+    throw InputError((path.empty() ? std::string("config") : path) + ": " + e.what());
+  }
+  return config;
+}
+
+nlohmann::json OdometryConfigToJson(const OdometryConfig& config) {
+  OdometryConfig copy = config;
+  ConfigRegistry registry;
+  RegisterConfigKeys(&copy, &registry);
+  return registry.ToJson();
+}
+
+std::vector<std::string> DescribeConfigKeys() {
+  OdometryConfig defaults;
+  ConfigRegistry registry;
+  RegisterConfigKeys(&defaults, &registry);
+  return registry.Describe();
+}
+
+}  // namespace dynvo

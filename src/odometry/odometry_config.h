@@ -1,0 +1,62 @@
+#pragma once
+// Every parameter of a run, grouped by stage, with defaults; the JSON config and `--set`
+// overrides write into it through the ConfigRegistry, and Check() validates it whole.
+
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "dataset/tum_dataset.h"
+#include "dynamic_mask/dynamic_mask_options.h"
+#include "ego_motion/homography.h"
+#include "ego_motion/klt_tracker.h"
+#include "features/feature_options.h"
+#include "odometry/config_registry.h"
+#include "tracking/frame_tracker.h"
+
+namespace dynvo {
+
+// Where the intrinsics come from: "auto" (camera.json in the sequence, else the TUM camera
+// named by the folder, else the ROS default), a TUM preset, or the numbers given here.
+struct CameraConfig {
+  std::string source = "auto";  // auto | fr1 | fr2 | fr3 | ros_default | custom
+  Camera custom;                // used when source == "custom"
+};
+
+struct RunOptions {
+  bool preload = true;  // decode the next frames in a second thread while processing
+  int max_frames = 0;   // process at most this many frames (0 = all)
+  void Check() const;
+};
+
+struct OdometryConfig {
+  TumDatasetOptions dataset;
+  CameraConfig camera;
+  KltOptions klt;
+  HomographyOptions homography;
+  bool dynamic_mask_enabled = true;  // false = the baseline: same pipeline, no dynamic handling
+  DynamicMaskOptions dynamic_mask;
+  FeatureOptions features;
+  TrackerOptions tracker;
+  RunOptions run;
+
+  // Throws InputError naming the first key whose value is out of range.
+  void Check() const;
+  // The intrinsics override for the dataset reader (nullopt for "auto").
+  std::optional<Camera> CameraOverride() const;
+};
+
+// Binds every key of `config` ("section.field") into `registry`.
+void RegisterConfigKeys(OdometryConfig* config, ConfigRegistry* registry);
+
+// Defaults, then the JSON file at `path` (if not empty), then each "key=value" override in
+// order; then Check(). Throws InputError naming the file, key or override at fault.
+OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std::string>& overrides);
+
+// The effective config as JSON (every key, nested by section).
+nlohmann::json OdometryConfigToJson(const OdometryConfig& config);
+
+// "key (type, default value): help" for every key, in key order.
+std::vector<std::string> DescribeConfigKeys();
+
+}  // namespace dynvo

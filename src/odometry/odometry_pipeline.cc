@@ -1,0 +1,113 @@
+#include "odometry/odometry_pipeline.h"
+
+#include <chrono>
+
+#include <opencv2/imgproc.hpp>
+
+#include "dynamic_mask/dynamic_mask_detector.h"
+#include "features/feature_filter.h"
+
+namespace dynvo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split) {
+  cv::Mat canvas = bgr.clone();
+  for (const cv::KeyPoint& k : split.kept.keypoints)
+    cv::circle(canvas, k.pt, 3, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
+  for (const cv::KeyPoint& k : split.removed.keypoints)
+    cv::circle(canvas, k.pt, 3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  return canvas;
+}
+
+}  // namespace
+
+OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config)
+    : camera_(camera),
+      config_(config),
+      extractor_(config.features),
+      tracker_(camera, config.tracker) {}
+
+bool OdometryPipeline::NeedsNextFrame() const {
+  return config_.dynamic_mask_enabled && config_.dynamic_mask.backward == BackwardMode::kTriplet;
+}
+
+FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& next_gray,
+                                      DebugPanels* debug) {
+  const auto start = Clock::now();
+  FrameRecord record;
+  record.index = frame.index;
+  record.stamp = frame.stamp;
+
+  // 1. Dynamic mask (skipped in the baseline and on the first frame).
+  last_mask_.release();
+  if (config_.dynamic_mask_enabled) {
+    if (previous_gray_.empty()) {
+      record.mask_note = "first frame: no previous frame to difference";
+    } else {
+      const auto t = Clock::now();
+      DynamicMaskInput input;
+      input.previous_gray = previous_gray_;
+      input.current_gray = frame.gray;
+      if (NeedsNextFrame()) input.next_gray = next_gray;
+      DynamicMaskResult mask =
+          DetectDynamicMask(input, config_.klt, config_.homography, config_.dynamic_mask);
+      record.times.dynamic_mask_ms = MsSince(t);
+      record.mask_ok = mask.ok;
+      record.mask_note = mask.ok ? "" : mask.failure;
+      if (mask.ok) {
+        last_mask_ = mask.mask;
+        record.dynamic_ratio = mask.dynamic_ratio;
+      }
+      if (debug) {
+        debug->compensated = mask.compensated;
+        debug->difference = mask.difference;
+        debug->forward_mask = mask.forward_mask;
+        debug->backward_mask = mask.backward_mask;
+        debug->fused_mask = mask.mask;
+      }
+    }
+  }
+
+  // 2. Features, 3. minus the dynamic ones.
+  auto t = Clock::now();
+  FrameFeatures features = extractor_.Extract(frame.gray, frame.depth, camera_);
+  record.times.features_ms = MsSince(t);
+  record.features_total = static_cast<int>(features.size());
+
+  t = Clock::now();
+  FeatureSplit split;
+  if (!last_mask_.empty()) {
+    split = SplitByMask(features, last_mask_);
+  } else {
+    split.kept = std::move(features);
+  }
+  record.times.filter_ms = MsSince(t);
+  record.features_kept = static_cast<int>(split.kept.size());
+  record.features_removed = static_cast<int>(split.removed.size());
+  if (debug) debug->features = DrawFeatures(frame.bgr, split);
+
+  // 4. Pose from the static features, local map, local BA.
+  const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp);
+  record.world_from_camera = tracking.world_from_camera;
+  record.state = tracking.state;
+  record.tracking_note = tracking.note;
+  record.num_matches = tracking.num_matches;
+  record.num_inliers = tracking.num_inliers;
+  record.keyframe = tracking.keyframe_inserted;
+  record.times.match_ms = tracking.match_ms;
+  record.times.pose_ms = tracking.pose_ms;
+  record.times.map_ms = tracking.map_ms;
+  record.times.local_ba_ms = tracking.local_ba_ms;
+
+  previous_gray_ = frame.gray;
+  record.times.processing_ms = MsSince(start);
+  return record;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,56 @@
+#pragma once
+// The paper's per-frame pipeline (papers/README.md §1): dynamic mask from motion-compensated
+// differencing, ORB features minus those in the mask, frame-to-local-map tracking with EPnP +
+// Ceres refinement, keyframes and local bundle adjustment. With the mask stage switched off
+// it is the baseline, identical otherwise.
+
+#include <memory>
+
+#include <opencv2/core.hpp>
+
+#include "core/camera.h"
+#include "dataset/tum_dataset.h"
+#include "features/feature_extractor.h"
+#include "odometry/frame_record.h"
+#include "odometry/odometry_config.h"
+#include "tracking/frame_tracker.h"
+
+namespace dynvo {
+
+// The paper's Fig. 1 / Fig. 3 panels of one frame.
+struct DebugPanels {
+  cv::Mat compensated;    // frame t-1 warped onto t
+  cv::Mat difference;     // |t - warp(t-1)|
+  cv::Mat forward_mask;   // after threshold and morphology
+  cv::Mat backward_mask;  // (empty when backward detection is off)
+  cv::Mat fused_mask;     // union used to remove features
+  cv::Mat features;       // frame t, kept features green, removed red
+};
+
+class OdometryPipeline {
+ public:
+  // `camera` is the camera of the images passed to Process (undistorted when the reader
+  // undistorts). The config must have passed Check().
+  OdometryPipeline(const Camera& camera, const OdometryConfig& config);
+
+  // Processes frame t and returns its record (pose always set). `next_gray` is frame t+1,
+  // used only with backward detection "triplet" (empty at the end of the sequence).
+  // Fills `debug` when given.
+  FrameRecord Process(const RgbdFrame& frame, const cv::Mat& next_gray, DebugPanels* debug = nullptr);
+
+  // True when Process wants frame t+1 (backward detection "triplet").
+  bool NeedsNextFrame() const;
+
+  // The dynamic mask of the last processed frame (empty when none was computed).
+  const cv::Mat& last_mask() const { return last_mask_; }
+
+ private:
+  Camera camera_;
+  OdometryConfig config_;
+  FeatureExtractor extractor_;
+  FrameTracker tracker_;
+  cv::Mat previous_gray_;
+  cv::Mat last_mask_;
+};
+
+}  // namespace dynvo

@@ -1,0 +1,215 @@
+#include "odometry/sequence_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "dataset/trajectory_io.h"
+#include "odometry/debug_panels_writer.h"
+#include "odometry/frame_loader.h"
+#include "odometry/odometry_pipeline.h"
+#include "odometry/progress_meter.h"
+#include "odometry/timing_csv.h"
+
+namespace dynvo {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json"};
+
+void PrepareOutputDir(const RunRequest& request) {
+  if (request.out_dir.empty()) throw InputError("--out: an output folder is required");
+  const fs::path dir(request.out_dir);
+  if (fs::exists(dir) && !fs::is_directory(dir))
+    throw InputError(request.out_dir + ": exists and is not a folder");
+  if (!request.force)
+    for (const char* name : kOutputs)
+      if (fs::exists(dir / name))
+        throw InputError((dir / name).string() +
+                         ": exists from an earlier run; pass --force to overwrite");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(request.out_dir + ": cannot create folder: " + ec.message());
+  if (!request.debug_frames.empty()) {
+    fs::create_directories(dir / "debug", ec);
+    if (ec) throw InputError((dir / "debug").string() + ": cannot create folder: " + ec.message());
+  }
+}
+
+nlohmann::json Summary(std::vector<double> values) {
+  if (values.empty()) return nullptr;
+  std::sort(values.begin(), values.end());
+  auto at = [&](double q) { return values[static_cast<size_t>(q * (values.size() - 1) + 0.5)]; };
+  double sum = 0;
+  for (double v : values) sum += v;
+  const size_t n = values.size();
+  const double median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  return {{"median", median}, {"mean", sum / n}, {"p90", at(0.9)}, {"max", values.back()}};
+}
+
+nlohmann::json CameraJson(const Camera& c) {
+  return {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy},
+          {"cx", c.cx},       {"cy", c.cy},         {"distortion", c.distortion}};
+}
+
+// Collects per-frame figures for run.json.
+struct RunTally {
+  std::vector<double> processing, load;
+  std::map<std::string, std::vector<double>> stages;
+  std::map<std::string, int> states;
+  int keyframes = 0, mask_computed = 0, mask_failed = 0;
+  long long features_removed = 0;
+  MaskCounts mask_total;
+  std::vector<double> mask_iou;
+
+  void Add(const FrameRecord& r) {
+    processing.push_back(r.times.processing_ms);
+    load.push_back(r.times.load_ms);
+    const StageTimes& t = r.times;
+    stages["dynamic_mask_ms"].push_back(t.dynamic_mask_ms);
+    stages["features_ms"].push_back(t.features_ms);
+    stages["filter_ms"].push_back(t.filter_ms);
+    stages["match_ms"].push_back(t.match_ms);
+    stages["pose_ms"].push_back(t.pose_ms);
+    stages["map_ms"].push_back(t.map_ms);
+    stages["local_ba_ms"].push_back(t.local_ba_ms);
+    states[ToString(r.state)]++;
+    keyframes += r.keyframe;
+    mask_computed += r.mask_ok;
+    mask_failed += !r.mask_ok && !r.mask_note.empty();
+    features_removed += r.features_removed;
+    if (r.mask_quality) {
+      mask_total += *r.mask_quality;
+      mask_iou.push_back(r.mask_quality->Iou());
+    }
+  }
+};
+
+}  // namespace
+
+nlohmann::json RunOdometry(const RunRequest& request) {
+  const OdometryConfig config = LoadOdometryConfig(request.config_path, request.overrides);
+  TumDatasetOptions dataset_options = config.dataset;
+  dataset_options.camera = config.CameraOverride();
+  const TumDataset dataset(request.dataset, dataset_options);
+  PrepareOutputDir(request);
+
+  const fs::path out(request.out_dir);
+  size_t count = dataset.size();
+  if (config.run.max_frames > 0) count = std::min(count, static_cast<size_t>(config.run.max_frames));
+  const std::set<size_t> debug_frames(request.debug_frames.begin(), request.debug_frames.end());
+  for (size_t f : debug_frames)
+    if (f >= count)
+      throw InputError("--debug-frames: frame " + std::to_string(f) + " is beyond the last frame " +
+                       std::to_string(count - 1));
+
+  nlohmann::json report;
+  report["dynvo_version"] = "0.1.0";
+  report["dataset"] = {{"folder", dataset.folder()},
+                       {"name", dataset.name()},
+                       {"frames_associated", dataset.size()},
+                       {"frames_to_process", count},
+                       {"unmatched_rgb", dataset.unmatched_rgb()},
+                       {"has_groundtruth", dataset.has_groundtruth()},
+                       {"has_masks", dataset.has_masks()},
+                       {"camera", CameraJson(dataset.camera())}};
+  report["config_file"] = request.config_path;
+  report["overrides"] = request.overrides;
+  report["config"] = OdometryConfigToJson(config);
+  report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()},
+                       {"timing", (out / "timing.csv").string()}};
+
+  const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
+  OdometryPipeline pipeline(dataset.camera(), config);
+  FrameLoader loader(dataset, count, evaluate_masks, config.run.preload);
+  TimingCsvWriter timing((out / "timing.csv").string());
+  std::ofstream trajectory((out / "trajectory.txt").string(), std::ios::trunc);
+  if (!trajectory) ThrowFileError((out / "trajectory.txt").string(), 0, "cannot write file");
+  ProgressMeter progress(count, request.quiet);
+  RunTally tally;
+  const auto wall_start = std::chrono::steady_clock::now();
+
+  auto process = [&](LoadedFrame& current, const cv::Mat& next_gray) {
+    DebugPanels panels;
+    const bool debug = debug_frames.count(current.frame.index) != 0;
+    FrameRecord record = pipeline.Process(current.frame, next_gray, debug ? &panels : nullptr);
+    record.times.load_ms = current.load_ms;
+    if (evaluate_masks) record.mask_quality = CompareMasks(pipeline.last_mask(), current.truth_mask);
+    if (debug) WriteDebugPanels((out / "debug").string(), record.index, current.frame.bgr, panels);
+    trajectory << FormatTrajectory({{record.stamp, record.world_from_camera}});
+    trajectory.flush();
+    timing.Write(record);
+    tally.Add(record);
+    progress.Update(tally.processing.size());
+  };
+
+  std::string failure;
+  try {
+    // Triplet backward detection processes frame t once frame t+1 is loaded.
+    std::optional<LoadedFrame> pending;
+    while (std::optional<LoadedFrame> loaded = loader.Next()) {
+      if (pipeline.NeedsNextFrame()) {
+        if (pending) process(*pending, loaded->frame.gray);
+        pending = std::move(loaded);
+      } else {
+        process(*loaded, cv::Mat());
+      }
+    }
+    if (pending) process(*pending, cv::Mat());
+  } catch (const InputError& e) {
+    failure = e.what();
+  } catch (const std::exception& e) {
+    // An internal failure must not lose what was computed: record it like a load error.
+    failure = "internal error after frame " + std::to_string(tally.processing.size()) + ": " + e.what();
+  }
+  progress.Finish(tally.processing.size());
+
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  double processing_total = 0;
+  for (double v : tally.processing) processing_total += v;
+  const size_t done = tally.processing.size();
+  report["status"] = failure.empty() ? "completed" : "failed";
+  if (!failure.empty()) report["error"] = failure;
+  report["counts"] = {{"frames", done},
+                      {"tracking_states", tally.states},
+                      {"keyframes", tally.keyframes},
+                      {"masks_computed", tally.mask_computed},
+                      {"masks_failed", tally.mask_failed},
+                      {"features_removed", tally.features_removed}};
+  nlohmann::json stages;
+  for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
+  report["time"] = {{"processing_ms", Summary(tally.processing)},
+                    {"load_ms", Summary(tally.load)},
+                    {"stages", stages},
+                    {"wall_s", wall_s},
+                    {"end_to_end_fps", wall_s > 0 ? done / wall_s : 0.0},
+                    {"processing_fps", processing_total > 0 ? 1000.0 * done / processing_total : 0.0},
+                    {"preload", config.run.preload}};
+  if (evaluate_masks && done > 0) {
+    double iou_sum = 0;
+    for (double v : tally.mask_iou) iou_sum += v;
+    report["mask_quality"] = {{"frames", tally.mask_iou.size()},
+                              {"precision", tally.mask_total.Precision()},
+                              {"recall", tally.mask_total.Recall()},
+                              {"iou", tally.mask_total.Iou()},
+                              {"mean_frame_iou", iou_sum / tally.mask_iou.size()},
+                              {"pooling", "precision, recall and iou over all pixels of all frames"}};
+  } else {
+    report["mask_quality"] = nullptr;
+  }
+
+  const std::string report_path = (out / "run.json").string();
+  std::ofstream report_file(report_path, std::ios::trunc);
+  if (!report_file) ThrowFileError(report_path, 0, "cannot write file");
+  report_file << report.dump(2) << '\n';
+  if (!failure.empty()) throw InputError(failure);
+  return report;
+}
+
+}  // namespace dynvo

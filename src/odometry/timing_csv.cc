@@ -1,0 +1,63 @@
+#include "odometry/timing_csv.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace dynvo {
+namespace {
+
+// CSV field with quotes doubled, quoted when it holds a separator or a quote.
+std::string CsvText(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string Fixed(double v, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
+  return buffer;
+}
+
+}  // namespace
+
+const char* TimingCsvWriter::Header() {
+  return "frame,stamp,load_ms,dynamic_mask_ms,features_ms,filter_ms,match_ms,pose_ms,map_ms,"
+         "local_ba_ms,processing_ms,features_total,features_kept,features_removed,"
+         "dynamic_ratio,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,keyframe,"
+         "mask_precision,mask_recall,mask_iou";
+}
+
+TimingCsvWriter::TimingCsvWriter(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
+  if (!out_) ThrowFileError(path, 0, "cannot write file");
+  out_ << Header() << '\n';
+  out_.flush();
+}
+
+void TimingCsvWriter::Write(const FrameRecord& r) {
+  const StageTimes& t = r.times;
+  out_ << r.index << ',' << Fixed(r.stamp, 6) << ',' << Fixed(t.load_ms, 3) << ','
+       << Fixed(t.dynamic_mask_ms, 3) << ',' << Fixed(t.features_ms, 3) << ','
+       << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ',' << Fixed(t.pose_ms, 3) << ','
+       << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ',' << Fixed(t.processing_ms, 3)
+       << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed << ','
+       << Fixed(r.dynamic_ratio, 5) << ',' << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
+       << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches << ','
+       << r.num_inliers << ',' << (r.keyframe ? 1 : 0) << ',';
+  if (r.mask_quality) {
+    out_ << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5)
+         << ',' << Fixed(r.mask_quality->Iou(), 5);
+  } else {
+    out_ << ",,";
+  }
+  out_ << '\n';
+  out_.flush();
+  if (!out_) ThrowFileError(path_, 0, "write failed");
+}
+
+}  // namespace dynvo

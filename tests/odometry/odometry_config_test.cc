@@ -1,0 +1,83 @@
+#include "odometry/odometry_config.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "support/temp_dir.h"
+
+namespace dynvo {
+namespace {
+
+std::string ConfigPath(const std::string& name) {
+  return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name;
+}
+
+std::string LoadError(const std::string& path, const std::vector<std::string>& overrides) {
+  try {
+    LoadOdometryConfig(path, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OdometryConfig, PaperConfigHasThePapersParameters) {
+  const OdometryConfig c = LoadOdometryConfig(ConfigPath("paper.json"), {});
+  EXPECT_TRUE(c.dynamic_mask_enabled);
+  EXPECT_EQ(c.dynamic_mask.threshold, ThresholdMethod::kOtsu);
+  EXPECT_EQ(c.dynamic_mask.erode_kernel_size, 4);
+  EXPECT_EQ(c.dynamic_mask.erode_iterations, 2);
+  EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 16);
+  EXPECT_EQ(c.dynamic_mask.dilate_iterations, 1);
+  EXPECT_NE(c.dynamic_mask.backward, BackwardMode::kNone);
+}
+
+TEST(OdometryConfig, BaselineDiffersOnlyByTheMaskSwitch) {
+  nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
+  nlohmann::json baseline = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("baseline.json"), {}));
+  EXPECT_EQ(baseline["dynamic_mask"]["enabled"], false);
+  paper["dynamic_mask"].erase("enabled");
+  baseline["dynamic_mask"].erase("enabled");
+  // Mask parameters are irrelevant when the stage is off; all other stages must be identical.
+  paper.erase("dynamic_mask");
+  baseline.erase("dynamic_mask");
+  EXPECT_EQ(paper, baseline) << nlohmann::json::diff(paper, baseline).dump(1);
+}
+
+TEST(OdometryConfig, ErrorsNameFileAndKey) {
+  test::TempDir dir;
+  const std::string bad_key = dir.Write("bad_key.json", R"({"dynamic_mask": {"erode_iterationz": 2}})");
+  EXPECT_NE(LoadError(bad_key, {}).find("bad_key.json: unknown key 'dynamic_mask.erode_iterationz'"),
+            std::string::npos);
+  const std::string not_json = dir.Write("broken.json", "{\"features\": ");
+  EXPECT_NE(LoadError(not_json, {}).find("broken.json: not valid JSON"), std::string::npos);
+  EXPECT_NE(LoadError(dir.path().string() + "/missing.json", {}).find("missing.json: cannot open"),
+            std::string::npos);
+  const std::string range = LoadError("", {"dynamic_mask.erode_iterations=-1"});
+  EXPECT_NE(range.find("dynamic_mask.erode_iterations"), std::string::npos) << range;
+  const std::string features = LoadError("", {"features.num_features=0"});
+  EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
+  EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"),
+            std::string::npos);
+}
+
+TEST(OdometryConfig, OverridesWinOverTheFile) {
+  const OdometryConfig c = LoadOdometryConfig(
+      ConfigPath("paper.json"), {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
+                                 "camera.source=fr1"});
+  EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 9);
+  EXPECT_EQ(c.dynamic_mask.backward, BackwardMode::kTriplet);
+  ASSERT_TRUE(c.CameraOverride().has_value());
+  EXPECT_DOUBLE_EQ(c.CameraOverride()->fx, 517.3);
+}
+
+TEST(OdometryConfig, EchoReloadsToTheSameConfig) {
+  const OdometryConfig c = LoadOdometryConfig(ConfigPath("paper.json"), {"features.num_features=700"});
+  test::TempDir dir;
+  const std::string echo = dir.Write("echo.json", OdometryConfigToJson(c).dump());
+  EXPECT_EQ(OdometryConfigToJson(LoadOdometryConfig(echo, {})), OdometryConfigToJson(c));
+  EXPECT_GT(DescribeConfigKeys().size(), 50u);
+}
+
+}  // namespace
+}  // namespace dynvo
