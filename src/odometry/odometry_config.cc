@@ -62,6 +62,14 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("ego_motion.pyramid_levels", &c->klt.pyramid_levels, "KLT pyramid levels above the base");
   r->Bind("ego_motion.max_forward_backward_error_px", &c->klt.max_forward_backward_error_px,
           "tracks whose back-tracking misses by more are dropped");
+  r->Bind("ego_motion.lk_max_iterations", &c->klt.lk_max_iterations, "LK iterations per pyramid level");
+  r->Bind("ego_motion.lk_epsilon_px", &c->klt.lk_epsilon_px, "LK stops when the update is smaller");
+  r->Bind("ego_motion.border_margin_px", &c->klt.border_margin_px,
+          "tracks ending closer to the image border are dropped");
+  r->Bind("ego_motion.detection_level", &c->klt.detection_level,
+          "pyramid level KLT corners are detected on (0 = full size)");
+  r->Bind("ego_motion.ransac_confidence", &c->homography.ransac_confidence,
+          "homography RANSAC stops early at this confidence");
   r->Bind("ego_motion.ransac_threshold_px", &c->homography.ransac_threshold_px,
           "homography RANSAC inlier threshold");
   r->Bind("ego_motion.ransac_iterations", &c->homography.ransac_iterations,
@@ -81,6 +89,12 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
       [m](const std::string& s) { m->threshold = ParseThresholdMethod(s, "dynamic_mask.threshold"); },
       "binarisation of the difference image (paper: otsu)");
   r->Bind("dynamic_mask.fixed_threshold", &m->fixed_threshold, "grey levels, with threshold \"fixed\"");
+  r->Bind("dynamic_mask.min_otsu_threshold", &m->min_otsu_threshold,
+          "grey levels; Otsu's threshold is raised to at least this (0 = paper)");
+  r->Bind("dynamic_mask.difference_level", &m->difference_level,
+          "pyramid level of the differencing (0 = full size, the paper; 1 = half size)");
+  r->Bind("dynamic_mask.rounds_min_change_px", &m->rounds_min_change_px,
+          "rounds stop when H moves no image corner by more than this (0 = run all)");
   r->Bind("dynamic_mask.erode_kernel_size", &m->erode_kernel_size, "pixels (paper: 4)");
   r->BindChoice(
       "dynamic_mask.erode_shape", {"rect", "ellipse", "cross"}, [m] { return ToString(m->erode_shape); },
@@ -109,6 +123,8 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
       "features.distribution", {"quadtree", "grid", "none"}, [f] { return ToString(f->distribution); },
       [f](const std::string& s) { f->distribution = ParseFeatureDistribution(s, "features.distribution"); },
       "how features are spread over the image");
+  r->Bind("features.parallel_levels", &f->parallel_levels,
+          "detect pyramid levels on OpenCV's thread pool (same result)");
   r->Bind("features.min_depth_m", &f->min_depth_m, "nearer depth gives no 3D point");
   r->Bind("features.max_depth_m", &f->max_depth_m, "farther depth gives no 3D point");
   // matching, pose, map, keyframes, local BA, tracking
@@ -142,7 +158,15 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("local_ba.huber_delta_px", &t->local_ba.huber_delta_px, "Huber loss scale");
   r->Bind("local_ba.outlier_threshold_px", &t->local_ba.outlier_threshold_px,
           "observations above are dropped after BA");
+  r->Bind("local_ba.rounds", &t->local_ba.rounds, "BA solves with outliers dropped in between");
+  r->Bind("local_ba.virtual_baseline_m", &t->local_ba.virtual_baseline_m,
+          "stereo baseline that weighs the depth residual of an observation");
   r->Bind("tracking.min_matches", &t->min_matches, "fewer map matches: wider search, then lost");
+  r->Bind("tracking.wide_search_factor", &t->wide_search_factor,
+          "search radius multiplier of the retry after too few matches");
+  r->Bind("tracking.lost_frames_before_reseed", &t->lost_frames_before_reseed,
+          "consecutive lost frames before the map is re-seeded from the current frame");
+  r->Bind("tracking.max_new_points", &t->max_new_points, "new map points per keyframe at most");
   // run
   r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");

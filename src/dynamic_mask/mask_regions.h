@@ -1,0 +1,20 @@
+#pragma once
+// Regions of interest of a dynamic mask (paper §1.2): its connected non-zero regions. A point lies
+// inside one of them exactly when the mask pixel under it is non-zero.
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace dynvo {
+
+// True when `point` (pixel coordinates, rounded to the nearest pixel) lies on a non-zero pixel of
+// the CV_8UC1 `mask`; points outside the image are not inside any region.
+bool InMaskRegion(const cv::Mat& mask, const cv::Point2f& point);
+
+// Per point: 1 when it lies outside every region of `mask` (static), 0 inside (dynamic).
+// An empty mask keeps every point.
+std::vector<uint8_t> StaticPointFlags(const cv::Mat& mask, const std::vector<cv::Point2f>& points);
+
+}  // namespace dynvo

@@ -1,0 +1,32 @@
+#pragma once
+// Options of ORB feature extraction and back-projection (config section "features").
+
+#include <string>
+
+namespace dynvo {
+
+// How detected corners are spread over the image before description.
+enum class FeatureDistribution { kQuadtree, kGrid, kNone };
+
+struct FeatureOptions {
+  int num_features = 1000;          // features wanted per frame
+  double scale_factor = 1.2;        // pyramid scale between levels (> 1)
+  int num_levels = 8;               // pyramid levels (>= 1)
+  int fast_threshold = 20;          // FAST threshold (grey levels)
+  int min_fast_threshold = 7;       // FAST threshold retried in cells where none is found (grey levels)
+  FeatureDistribution distribution = FeatureDistribution::kQuadtree;  // spreading strategy
+  double min_depth_m = 0.1;         // depth below -> no 3D point (metres)
+  double max_depth_m = 8.0;         // depth above -> no 3D point, far/unreliable (metres)
+  bool parallel_levels = false;     // pyramid levels on OpenCV's thread pool (same result)
+
+  // Throws InputError naming the key "features.<field>" when a field is out of range.
+  void Check() const;
+};
+
+// "quadtree" / "grid" / "none"; throws InputError naming `key` otherwise.
+FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key);
+
+// The config spelling of a distribution ("quadtree", "grid", "none").
+std::string ToString(FeatureDistribution distribution);
+
+}  // namespace dynvo

@@ -1,0 +1,266 @@
+#include "mapping/bundle_adjustment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <ceres/ceres.h>
+#include <ceres/manifold.h>
+
+#include "core/error.h"
+#include "mapping/rgbd_reprojection_error.h"
+#include "pose/reprojection_error.h"
+
+namespace dynvo {
+
+void BundleAdjustmentOptions::Check() const {
+  if (window_keyframes < 1)
+    throw InputError("local_ba.window_keyframes must be >= 1, got " +
+                     std::to_string(window_keyframes));
+  if (max_iterations < 1)
+    throw InputError("local_ba.max_iterations must be >= 1, got " +
+                     std::to_string(max_iterations));
+  if (rounds < 1)
+    throw InputError("local_ba.rounds must be >= 1, got " + std::to_string(rounds));
+  if (!(huber_delta_px > 0.0))
+    throw InputError("local_ba.huber_delta_px must be > 0, got " +
+                     std::to_string(huber_delta_px));
+  if (!(outlier_threshold_px > 0.0))
+    throw InputError("local_ba.outlier_threshold_px must be > 0, got " +
+                     std::to_string(outlier_threshold_px));
+  if (!(virtual_baseline_m >= 0.0))
+    throw InputError("local_ba.virtual_baseline_m must be >= 0, got " +
+                     std::to_string(virtual_baseline_m));
+}
+
+namespace {
+
+// Minimum number of constant keyframes: rigid motion (6 dof) and, without depth, scale (1).
+constexpr size_t kMinFixedKeyframes = 2;
+// Residual of a point on or behind the image plane in the statistics, pixels squared.
+constexpr double kBehindSquaredError = 1e6;
+
+struct PoseBlock {
+  double q[4];  // camera_from_world rotation, Eigen order x y z w
+  double t[3];  // camera_from_world translation, metres
+};
+
+PoseBlock ToBlock(const Pose& camera_from_world) {
+  const Eigen::Quaterniond q = PoseQuaternion(camera_from_world);
+  PoseBlock b;
+  b.q[0] = q.x(); b.q[1] = q.y(); b.q[2] = q.z(); b.q[3] = q.w();
+  for (int i = 0; i < 3; ++i) b.t[i] = camera_from_world.translation()[i];
+  return b;
+}
+
+Pose FromBlock(const PoseBlock& b) {
+  Eigen::Quaterniond q(b.q[3], b.q[0], b.q[1], b.q[2]);
+  q.normalize();
+  Pose pose = Pose::Identity();
+  pose.linear() = q.toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(b.t[0], b.t[1], b.t[2]);
+  return pose;
+}
+
+struct SquaredErrors {
+  double pixel = 0.0;  // reprojection, pixels squared
+  double full = 0.0;   // plus the disparity component when the observation has depth
+};
+
+SquaredErrors Errors(const Camera& camera, double bf, const Pose& camera_from_world,
+                     const Eigen::Vector3d& point_in_world, const KeyframeObservation& obs) {
+  const Eigen::Vector3d p = camera_from_world * point_in_world;
+  if (p.z() < 1e-6) return {kBehindSquaredError, kBehindSquaredError};
+  SquaredErrors e;
+  const Eigen::Vector2d r = camera.Project(p) - obs.pixel;
+  e.pixel = r.squaredNorm();
+  e.full = e.pixel;
+  if (bf > 0.0 && obs.depth > 0.0) {
+    const double disparity = r.x() - bf / p.z() + bf / obs.depth;
+    e.full += disparity * disparity;
+  }
+  return e;
+}
+
+struct Residual {
+  size_t keyframe;      // index into the map's keyframes
+  size_t observation;   // index into that keyframe's observations
+  size_t point;         // index into the optimised points
+};
+
+}  // namespace
+
+BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& camera,
+                                                const BundleAdjustmentOptions& options) {
+  options.Check();
+  BundleAdjustmentReport report;
+  if (!options.enabled) {
+    report.failure = "disabled";
+    return report;
+  }
+  const auto& keyframes = map.keyframes();
+  const size_t n = keyframes.size();
+  if (n < kMinFixedKeyframes + 1) {
+    report.failure = "needs at least 3 keyframes (2 stay fixed)";
+    return report;
+  }
+  const double bf = camera.fx * options.virtual_baseline_m;
+
+  // The window: the newest keyframes, and the points they observe.
+  const size_t window = std::min(static_cast<size_t>(options.window_keyframes), n);
+  const size_t window_begin = n - window;
+  std::unordered_map<int64_t, int> window_points;  // point id -> observations among used keyframes
+  for (size_t k = window_begin; k < n; ++k)
+    for (const KeyframeObservation& obs : keyframes[k].observations) window_points[obs.point_id] = 0;
+
+  // Keyframes used: the window plus the older ones observing a window point (fixed).
+  std::vector<uint8_t> used(n, 0), fixed(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    for (const KeyframeObservation& obs : keyframes[k].observations) {
+      auto it = window_points.find(obs.point_id);
+      if (it == window_points.end()) continue;
+      it->second += 1;
+      used[k] = 1;
+    }
+    if (k < window_begin && used[k]) fixed[k] = 1;
+  }
+  size_t num_fixed = static_cast<size_t>(std::count(fixed.begin(), fixed.end(), 1));
+  // Too few covisible older keyframes: fix the oldest of the window too.
+  for (size_t k = window_begin; k < n && num_fixed < kMinFixedKeyframes; ++k) {
+    if (used[k] && !fixed[k]) {
+      fixed[k] = 1;
+      ++num_fixed;
+    }
+  }
+
+  // Points seen at least twice, in a deterministic order (keyframe, observation).
+  std::unordered_map<int64_t, size_t> point_index;
+  std::vector<int64_t> point_ids;
+  std::vector<Residual> residuals;
+  for (size_t k = 0; k < n; ++k) {
+    if (!used[k]) continue;
+    const auto& observations = keyframes[k].observations;
+    for (size_t o = 0; o < observations.size(); ++o) {
+      auto it = window_points.find(observations[o].point_id);
+      if (it == window_points.end() || it->second < 2) continue;
+      auto [slot, inserted] = point_index.emplace(observations[o].point_id, point_ids.size());
+      if (inserted) point_ids.push_back(observations[o].point_id);
+      residuals.push_back({k, o, slot->second});
+    }
+  }
+  if (residuals.empty()) {
+    report.failure = "no point is observed by two keyframes";
+    return report;
+  }
+
+  std::vector<PoseBlock> poses(n);
+  for (size_t k = 0; k < n; ++k)
+    if (used[k]) poses[k] = ToBlock(keyframes[k].camera_from_world);
+  std::vector<Eigen::Vector3d> points(point_ids.size());
+  for (size_t i = 0; i < point_ids.size(); ++i)
+    points[i] = map.FindPoint(point_ids[i])->position_in_world;
+
+  double initial_sq = 0.0;
+  for (const Residual& r : residuals)
+    initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, points[r.point],
+                         keyframes[r.keyframe].observations[r.observation]).pixel;
+  for (size_t k = 0; k < n; ++k)
+    if (used[k] && !fixed[k]) ++report.num_keyframes_optimised;
+  report.num_keyframes_fixed = static_cast<int>(num_fixed);
+  report.num_points = static_cast<int>(points.size());
+  report.num_observations = static_cast<int>(residuals.size());
+  report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(residuals.size()));
+
+  // Round 1 over all observations; later rounds (only when the previous one found outliers)
+  // without them, so that they no longer pull on the solution even through the Huber loss.
+  const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
+  std::vector<uint8_t> active(residuals.size(), 1);
+  for (int round = 0; round < options.rounds; ++round) {
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    // One loss object shared by all residuals; the problem deletes it once.
+    ceres::LossFunction* loss = new ceres::HuberLoss(options.huber_delta_px);
+    for (size_t i = 0; i < residuals.size(); ++i) {
+      if (!active[i]) continue;
+      const Residual& r = residuals[i];
+      const KeyframeObservation& obs = keyframes[r.keyframe].observations[r.observation];
+      ceres::CostFunction* cost =
+          bf > 0.0
+              ? new RgbdReprojectionCost(obs.pixel, obs.depth, bf, camera.fx, camera.fy,
+                                         camera.cx, camera.cy)
+              : ReprojectionError::Create(obs.pixel, camera.fx, camera.fy, camera.cx, camera.cy);
+      problem.AddResidualBlock(cost, loss, poses[r.keyframe].q, poses[r.keyframe].t,
+                               points[r.point].data());
+    }
+    if (problem.NumResidualBlocks() == 0) {
+      delete loss;
+      break;
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (!used[k] || !problem.HasParameterBlock(poses[k].q)) continue;
+      problem.SetManifold(poses[k].q, new ceres::EigenQuaternionManifold);
+      if (fixed[k]) {
+        problem.SetParameterBlockConstant(poses[k].q);
+        problem.SetParameterBlockConstant(poses[k].t);
+      }
+    }
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_SCHUR;
+    solver_options.max_num_iterations = options.max_iterations;
+    solver_options.num_threads = 1;  // deterministic
+    solver_options.logging_type = ceres::SILENT;
+    solver_options.minimizer_progress_to_stdout = false;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, &problem, &summary);
+    report.iterations += static_cast<int>(summary.iterations.size());
+    if (!summary.IsSolutionUsable()) {
+      report.failure = "ceres: " + summary.message;
+      return report;  // nothing written back yet: the map is unchanged
+    }
+    bool any_new_outlier = false;
+    for (size_t i = 0; i < residuals.size(); ++i) {
+      if (!active[i]) continue;
+      const Residual& r = residuals[i];
+      if (Errors(camera, bf, FromBlock(poses[r.keyframe]), points[r.point],
+                 keyframes[r.keyframe].observations[r.observation]).full > threshold_sq) {
+        active[i] = 0;
+        any_new_outlier = true;
+      }
+    }
+    if (!any_new_outlier) break;
+  }
+
+  for (size_t k = 0; k < n; ++k)
+    if (used[k] && !fixed[k]) map.SetKeyframePose(k, FromBlock(poses[k]));
+  for (size_t i = 0; i < point_ids.size(); ++i) map.SetPointPosition(point_ids[i], points[i]);
+
+  // Final errors; every observation above the threshold now (not only those left out during
+  // the rounds) is removed from the map.
+  double final_sq = 0.0, inlier_sq = 0.0;
+  int num_inliers = 0;
+  std::vector<std::pair<int64_t, int64_t>> outliers;
+  for (const Residual& r : residuals) {
+    const Keyframe& keyframe = keyframes[r.keyframe];
+    const KeyframeObservation& obs = keyframe.observations[r.observation];
+    const SquaredErrors e = Errors(camera, bf, keyframe.camera_from_world, points[r.point], obs);
+    final_sq += e.pixel;
+    if (e.full > threshold_sq) {
+      outliers.emplace_back(keyframe.id, obs.point_id);
+    } else {
+      inlier_sq += e.pixel;
+      ++num_inliers;
+    }
+  }
+  report.final_rms_px = std::sqrt(final_sq / static_cast<double>(residuals.size()));
+  report.final_inlier_rms_px = num_inliers > 0 ? std::sqrt(inlier_sq / num_inliers) : 0.0;
+  report.num_outliers_removed = static_cast<int>(outliers.size());
+  if (!outliers.empty()) map.RemoveObservations(outliers);
+  report.ok = true;
+  return report;
+}
+
+}  // namespace dynvo

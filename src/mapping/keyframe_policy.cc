@@ -1,0 +1,50 @@
+#include "mapping/keyframe_policy.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+namespace {
+constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+}  // namespace
+
+void KeyframeOptions::Check() const {
+  if (max_frames_between < 1)
+    throw InputError("keyframes.max_frames_between must be >= 1, got " +
+                     std::to_string(max_frames_between));
+  if (!(min_tracked_ratio >= 0.0 && min_tracked_ratio <= 1.0))
+    throw InputError("keyframes.min_tracked_ratio must be in [0, 1], got " +
+                     std::to_string(min_tracked_ratio));
+  if (!(min_translation_m > 0.0))
+    throw InputError("keyframes.min_translation_m must be > 0, got " +
+                     std::to_string(min_translation_m));
+  if (!(min_rotation_deg > 0.0))
+    throw InputError("keyframes.min_rotation_deg must be > 0, got " +
+                     std::to_string(min_rotation_deg));
+}
+
+KeyframeDecision DecideKeyframe(const KeyframeOptions& options, int frames_since_keyframe,
+                                int num_tracked, int num_tracked_reference,
+                                const Pose& keyframe_camera_from_world,
+                                const Pose& current_camera_from_world) {
+  KeyframeDecision decision;
+  const Pose keyframe_from_current =
+      keyframe_camera_from_world * current_camera_from_world.inverse();
+  const double rotation_deg = RotationAngle(keyframe_from_current) * kDegreesPerRadian;
+  if (frames_since_keyframe >= options.max_frames_between) {
+    decision.reason = "frames";
+  } else if (num_tracked_reference > 0 &&
+             num_tracked < options.min_tracked_ratio * num_tracked_reference) {
+    decision.reason = "tracked_ratio";
+  } else if (keyframe_from_current.translation().norm() >= options.min_translation_m) {
+    decision.reason = "translation";
+  } else if (rotation_deg >= options.min_rotation_deg) {
+    decision.reason = "rotation";
+  }
+  decision.insert = !decision.reason.empty();
+  return decision;
+}
+
+}  // namespace dynvo

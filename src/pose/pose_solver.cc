@@ -1,0 +1,291 @@
+#include "pose/pose_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <sstream>
+
+#include <ceres/ceres.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+
+#include "core/error.h"
+#include "pose/reprojection_error.h"
+
+namespace dynvo {
+
+namespace {
+
+constexpr int kSampleSize = 4;          // EPnP minimal set used per hypothesis
+constexpr double kConfidence = 0.99;    // RANSAC stops early once this confident (ORB-SLAM)
+
+template <typename T>
+void Require(bool ok, const std::string& field, const std::string& rule, T value) {
+  if (ok) return;
+  std::ostringstream message;
+  message << "pose." << field << " must be " << rule << ", got " << value;
+  throw InputError(message.str());
+}
+
+void CheckSizes(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,
+                const char* where) {
+  if (points.size() != pixels.size())
+    throw InputError(std::string(where) + ": " + std::to_string(points.size()) +
+                     " points but " + std::to_string(pixels.size()) + " pixels");
+}
+
+// Squared reprojection error in pixels; infinity behind the camera.
+double SquaredError(const Eigen::Matrix3d& r, const Eigen::Vector3d& t, const Camera& camera,
+                    const Eigen::Vector3d& point, const Eigen::Vector2d& pixel) {
+  const Eigen::Vector3d pc = r * point + t;
+  if (!(pc.z() > 1e-6)) return std::numeric_limits<double>::infinity();
+  const double du = camera.fx * pc.x() / pc.z() + camera.cx - pixel.x();
+  const double dv = camera.fy * pc.y() / pc.z() + camera.cy - pixel.y();
+  return du * du + dv * dv;
+}
+
+// Marks correspondences in `candidates` (all when null) with error below `threshold`; returns
+// the count and the sum of squared errors of the inliers.
+int Classify(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,
+             const Camera& camera, const Pose& camera_from_world, double threshold,
+             const std::vector<uint8_t>* candidates, std::vector<uint8_t>* inliers,
+             double* sum_squared) {
+  const Eigen::Matrix3d r = camera_from_world.linear();
+  const Eigen::Vector3d t = camera_from_world.translation();
+  const double threshold2 = threshold * threshold;
+  inliers->assign(points.size(), 0);
+  int count = 0;
+  double sum = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (candidates != nullptr && !(*candidates)[i]) continue;
+    const double e2 = SquaredError(r, t, camera, points[i], pixels[i]);
+    if (e2 < threshold2) {
+      (*inliers)[i] = 1;
+      ++count;
+      sum += e2;
+    }
+  }
+  if (sum_squared != nullptr) *sum_squared = sum;
+  return count;
+}
+
+// EPnP on the given correspondences; false when OpenCV fails or the result is not finite.
+bool SolveEpnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image,
+               const cv::Mat& k, Pose* camera_from_world) {
+  cv::Mat rvec, tvec;
+  bool ok = false;
+  try {
+    ok = cv::solvePnP(object, image, k, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_EPNP);
+  } catch (const cv::Exception&) {
+    return false;
+  }
+  if (!ok || !cv::checkRange(rvec) || !cv::checkRange(tvec)) return false;
+  const Eigen::Vector3d axis_angle(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
+  const Eigen::Vector3d t(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  *camera_from_world = PoseFromAxisAngle(axis_angle, t);
+  return true;
+}
+
+}  // namespace
+
+void PoseSolverOptions::Check() const {
+  Require(std::isfinite(ransac_threshold_px) && ransac_threshold_px > 0.0, "ransac_threshold_px",
+          "> 0", ransac_threshold_px);
+  Require(ransac_iterations >= 1, "ransac_iterations", ">= 1", ransac_iterations);
+  Require(min_inliers >= 4, "min_inliers", ">= 4", min_inliers);
+  Require(std::isfinite(huber_delta_px) && huber_delta_px > 0.0, "huber_delta_px", "> 0",
+          huber_delta_px);
+  Require(refine_iterations >= 1, "refine_iterations", ">= 1", refine_iterations);
+  Require(refine_rounds >= 1, "refine_rounds", ">= 1", refine_rounds);
+  Require(std::isfinite(outlier_threshold_px) && outlier_threshold_px > 0.0,
+          "outlier_threshold_px", "> 0", outlier_threshold_px);
+}
+
+PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
+                          const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
+                          const PoseSolverOptions& options) {
+  options.Check();
+  CheckSizes(points_in_world, pixels, "EstimatePose");
+  PoseEstimate result;
+  const int n = static_cast<int>(points_in_world.size());
+  result.inliers.assign(n, 0);
+  if (n < std::max(kSampleSize, options.min_inliers)) {
+    result.failure = "too few correspondences: " + std::to_string(n) + " < " +
+                     std::to_string(std::max(kSampleSize, options.min_inliers));
+    return result;
+  }
+
+  const cv::Mat k = camera.K();
+  std::mt19937 rng(options.seed);
+  std::vector<cv::Point3d> object(kSampleSize);
+  std::vector<cv::Point2d> image(kSampleSize);
+  std::vector<uint8_t> inliers;
+  std::vector<int> sample(kSampleSize);
+  int best_count = 0;
+  Pose best_pose = Pose::Identity();
+  int needed = options.ransac_iterations;
+  for (int it = 0; it < needed; ++it) {
+    // kSampleSize distinct indices (rejection sampling; n >= kSampleSize here).
+    for (int s = 0; s < kSampleSize; ++s) {
+      int candidate;
+      bool repeated;
+      do {
+        candidate = static_cast<int>(rng() % static_cast<unsigned>(n));
+        repeated = std::find(sample.begin(), sample.begin() + s, candidate) != sample.begin() + s;
+      } while (repeated);
+      sample[s] = candidate;
+      const Eigen::Vector3d& p = points_in_world[candidate];
+      object[s] = {p.x(), p.y(), p.z()};
+      image[s] = {pixels[candidate].x(), pixels[candidate].y()};
+    }
+    Pose hypothesis;
+    if (!SolveEpnp(object, image, k, &hypothesis)) continue;
+    int count = Classify(points_in_world, pixels, camera, hypothesis,
+                         options.ransac_threshold_px, nullptr, &inliers, nullptr);
+    if (count > best_count) {
+      // Local optimisation: EPnP on all the inliers of a new best hypothesis recovers the
+      // inliers a noisy minimal sample missed, so the stopping rule sees the true ratio.
+      if (count >= std::max(options.min_inliers, 2 * kSampleSize)) {
+        std::vector<cv::Point3d> all_object;
+        std::vector<cv::Point2d> all_image;
+        all_object.reserve(count);
+        all_image.reserve(count);
+        for (int i = 0; i < n; ++i) {
+          if (!inliers[i]) continue;
+          const Eigen::Vector3d& p = points_in_world[i];
+          all_object.emplace_back(p.x(), p.y(), p.z());
+          all_image.emplace_back(pixels[i].x(), pixels[i].y());
+        }
+        Pose improved;
+        std::vector<uint8_t> improved_inliers;
+        if (SolveEpnp(all_object, all_image, k, &improved)) {
+          const int improved_count =
+              Classify(points_in_world, pixels, camera, improved, options.ransac_threshold_px,
+                       nullptr, &improved_inliers, nullptr);
+          if (improved_count > count) {
+            count = improved_count;
+            hypothesis = improved;
+          }
+        }
+      }
+      best_count = count;
+      best_pose = hypothesis;
+      // Iterations for kConfidence that one sample was all inliers at this inlier ratio.
+      const double w = static_cast<double>(count) / n;
+      const double all_inliers = std::pow(w, kSampleSize);
+      if (all_inliers >= 1.0 - 1e-12) {
+        needed = it + 1;
+      } else {
+        // log1p keeps tiny ratios accurate; clamp in double before converting to int.
+        const double k_needed = std::log(1.0 - kConfidence) / std::log1p(-all_inliers);
+        const double capped = std::min(static_cast<double>(options.ransac_iterations),
+                                       std::ceil(k_needed));
+        needed = std::max(it + 1, static_cast<int>(capped));
+      }
+    }
+  }
+  if (best_count < options.min_inliers) {
+    result.failure = "RANSAC found " + std::to_string(best_count) + " inliers, fewer than " +
+                     std::to_string(options.min_inliers);
+    result.num_inliers = best_count;
+    return result;
+  }
+  Classify(points_in_world, pixels, camera, best_pose, options.ransac_threshold_px, nullptr,
+           &inliers, nullptr);
+  return RefinePose(points_in_world, pixels, camera, best_pose, options, &inliers);
+}
+
+PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
+                        const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
+                        const Pose& initial_camera_from_world, const PoseSolverOptions& options,
+                        const std::vector<uint8_t>* use) {
+  options.Check();
+  CheckSizes(points_in_world, pixels, "RefinePose");
+  const size_t n = points_in_world.size();
+  if (use != nullptr && use->size() != n)
+    throw InputError("RefinePose: `use` has " + std::to_string(use->size()) + " entries for " +
+                     std::to_string(n) + " correspondences");
+  PoseEstimate result;
+  result.camera_from_world = initial_camera_from_world;
+  result.inliers.assign(n, 0);
+
+  Eigen::Quaterniond q(initial_camera_from_world.linear());
+  q.normalize();
+  double q_xyzw[4] = {q.x(), q.y(), q.z(), q.w()};
+  double t[3] = {initial_camera_from_world.translation().x(),
+                 initial_camera_from_world.translation().y(),
+                 initial_camera_from_world.translation().z()};
+
+  // Cost functions built once and shared by the rounds' problems.
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n);
+  ceres::HuberLoss huber(options.huber_delta_px);
+  std::vector<uint8_t> active(n, 0);
+  for (size_t i = 0; i < n; ++i) active[i] = use == nullptr ? 1 : (*use)[i];
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 6 unknowns
+  solver_options.max_num_iterations = options.refine_iterations;
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+
+  for (int round = 0; round < options.refine_rounds; ++round) {
+    int active_count = 0;
+    for (uint8_t a : active) active_count += a;
+    if (active_count < options.min_inliers) break;
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
+    problem_options.enable_fast_removal = false;
+    ceres::Problem problem(problem_options);
+    for (size_t i = 0; i < n; ++i) {
+      if (!active[i]) continue;
+      if (!costs[i])
+        costs[i].reset(PoseReprojectionError::Create(pixels[i], points_in_world[i], camera.fx,
+                                                     camera.fy, camera.cx, camera.cy));
+      problem.AddResidualBlock(costs[i].get(), &huber, q_xyzw, t);
+    }
+    problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, &problem, &summary);
+    if (!summary.IsSolutionUsable()) {
+      result.failure = "Ceres refinement failed: " + summary.message;
+      return result;
+    }
+    const Eigen::Quaterniond refined(q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]);
+    Pose pose = Pose::Identity();
+    pose.linear() = refined.normalized().toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+    result.camera_from_world = pose;
+    // Re-classify the whole start set: a correspondence dropped earlier may come back.
+    std::vector<uint8_t> start(n);
+    for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
+    std::vector<uint8_t> next_active;
+    Classify(points_in_world, pixels, camera, pose, options.outlier_threshold_px, &start,
+             &next_active, nullptr);
+    // Same set as this round's: another round would solve the same problem again.
+    if (next_active == active) break;
+    active.swap(next_active);
+  }
+
+  double sum_squared = 0.0;
+  std::vector<uint8_t> start(n);
+  for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
+  result.num_inliers = Classify(points_in_world, pixels, camera, result.camera_from_world,
+                                options.outlier_threshold_px, &start, &result.inliers,
+                                &sum_squared);
+  result.rms_error_px =
+      result.num_inliers > 0 ? std::sqrt(sum_squared / result.num_inliers) : 0.0;
+  if (result.num_inliers < options.min_inliers) {
+    result.failure = "refinement kept " + std::to_string(result.num_inliers) +
+                     " inliers, fewer than " + std::to_string(options.min_inliers);
+    return result;
+  }
+  result.ok = true;
+  return result;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,58 @@
+#pragma once
+// Camera pose from 3D-2D correspondences: EPnP inside a seeded RANSAC, then Ceres refinement of
+// the reprojection error (paper eq. 5) with a Huber loss and outlier rejection.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/camera.h"
+#include "core/pose.h"
+
+namespace dynvo {
+
+struct PoseSolverOptions {
+  double ransac_threshold_px = 4.0;   // EPnP RANSAC inlier threshold (pixels)
+  int ransac_iterations = 100;        // RANSAC hypotheses (>= 1)
+  int min_inliers = 15;               // fewer inliers -> failure (>= 4)
+  unsigned seed = 7;                  // RANSAC random seed
+  double huber_delta_px = 2.0;        // Huber loss scale of eq. 5 (pixels, > 0)
+  int refine_iterations = 10;         // Ceres iterations per round (>= 1)
+  int refine_rounds = 2;              // refine, drop outliers, refine again (>= 1)
+  double outlier_threshold_px = 3.0;  // residual above -> outlier after a round (pixels, > 0)
+
+  // Throws InputError naming the key "pose.<field>" when a field is out of range.
+  void Check() const;
+};
+
+struct PoseEstimate {
+  bool ok = false;
+  std::string failure;                        // why ok is false (empty when ok)
+  Pose camera_from_world = Pose::Identity();
+  std::vector<uint8_t> inliers;               // per correspondence, 1 = inlier
+  int num_inliers = 0;
+  double rms_error_px = 0.0;                  // reprojection RMS over inliers (pixels)
+};
+
+// EPnP inside a seeded RANSAC for an initial pose (4-point samples, EPnP on all inliers of each
+// new best hypothesis, adaptive stop at 99% confidence, at most `ransac_iterations`), then
+// RefinePose on the RANSAC inliers. Pixels are undistorted; `camera` distortion is ignored.
+// Deterministic for a given seed. Fails (ok = false, `failure` says why) when there are fewer
+// than `min_inliers` correspondences or inliers. Throws InputError when the vectors' sizes
+// differ or the options are invalid.
+PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
+                          const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
+                          const PoseSolverOptions& options);
+
+// Ceres refinement (quaternion + translation, EigenQuaternionManifold, Huber) from an initial
+// pose, `refine_rounds` rounds with outliers dropped between rounds; `use` (optional, per
+// correspondence) restricts the start set. Fails (ok = false) when fewer than `min_inliers`
+// inliers remain. Throws InputError when sizes differ or the options are invalid.
+PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
+                        const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
+                        const Pose& initial_camera_from_world, const PoseSolverOptions& options,
+                        const std::vector<uint8_t>* use = nullptr);
+
+}  // namespace dynvo

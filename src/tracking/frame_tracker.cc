@@ -1,0 +1,300 @@
+#include "tracking/frame_tracker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+bool HasDepth(double depth) { return depth > 0.0; }
+
+void CheckFeatures(const FrameFeatures& f) {
+  const size_t n = f.size();
+  if (f.pixels.size() != n || f.depths.size() != n || f.points_in_camera.size() != n)
+    throw InputError("FrameFeatures: keypoints, pixels, depths and points_in_camera must have "
+                     "the same size (" + std::to_string(n) + ", " +
+                     std::to_string(f.pixels.size()) + ", " + std::to_string(f.depths.size()) +
+                     ", " + std::to_string(f.points_in_camera.size()) + ")");
+  if (n > 0 && (f.descriptors.rows != static_cast<int>(n) || f.descriptors.cols != 32 ||
+                f.descriptors.type() != CV_8UC1))
+    throw InputError("FrameFeatures: descriptors must be " + std::to_string(n) +
+                     " x 32 CV_8UC1, got " + std::to_string(f.descriptors.rows) + " x " +
+                     std::to_string(f.descriptors.cols));
+}
+
+}  // namespace
+
+void TrackerOptions::Check() const {
+  matching.Check();
+  pose.Check();
+  map.Check();
+  keyframes.Check();
+  local_ba.Check();
+  if (min_matches < 4)
+    throw InputError("tracking.min_matches must be >= 4, got " + std::to_string(min_matches));
+  if (!(wide_search_factor >= 1.0))
+    throw InputError("tracking.wide_search_factor must be >= 1, got " +
+                     std::to_string(wide_search_factor));
+  if (max_new_points < 0)
+    throw InputError("tracking.max_new_points must be >= 0, got " + std::to_string(max_new_points));
+  if (lost_frames_before_reseed < 1)
+    throw InputError("tracking.lost_frames_before_reseed must be >= 1, got " +
+                     std::to_string(lost_frames_before_reseed));
+}
+
+FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
+    : camera_(camera), options_(options), map_(options.map) {
+  camera_.Check("tracker");
+  options_.Check();
+}
+
+TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) {
+  CheckFeatures(features);
+  ++frame_index_;
+  TrackingResult result;
+
+  if (!initialized_) {
+    const Clock::time_point start = Clock::now();
+    result.world_from_camera = motion_.Predict(stamp);
+    result.state = TrackingState::kInitializing;
+    if (SeedMap(features, stamp, result.world_from_camera)) {
+      initialized_ = true;
+      result.keyframe_inserted = true;
+    } else {
+      result.note = "too few features with depth to initialise the map";
+    }
+    motion_.Update(result.world_from_camera, stamp);
+    result.map_ms = MillisecondsSince(start);
+    result.map_keyframes = static_cast<int>(map_.num_keyframes());
+    result.map_points = static_cast<int>(map_.num_points());
+    return result;
+  }
+
+  const Pose predicted_world_from_camera = motion_.Predict(stamp);
+  std::vector<Match> matches;
+  std::string failure;
+  const PoseEstimate estimate =
+      EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
+
+  const Clock::time_point start = Clock::now();
+  if (estimate.ok) {
+    result.state = TrackingState::kTracking;
+    result.num_inliers = estimate.num_inliers;
+    result.world_from_camera = estimate.camera_from_world.inverse();
+    consecutive_lost_ = 0;
+    ++frames_since_keyframe_;
+    for (size_t i = 0; i < matches.size(); ++i)
+      if (estimate.inliers[i])
+        map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
+    const Pose keyframe_camera_from_world = map_.keyframes().back().camera_from_world;
+    const KeyframeDecision decision =
+        DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers,
+                       reference_tracked_, keyframe_camera_from_world, estimate.camera_from_world);
+    result.map_ms = MillisecondsSince(start);
+    if (decision.insert)
+      result.world_from_camera = InsertKeyframe(features, stamp, matches, estimate.inliers,
+                                                result.world_from_camera, result);
+  } else {
+    result.world_from_camera = predicted_world_from_camera;
+    result.state = TrackingState::kLost;
+    result.note = failure;
+    ++consecutive_lost_;
+    if (consecutive_lost_ >= options_.lost_frames_before_reseed &&
+        SeedMap(features, stamp, predicted_world_from_camera)) {
+      result.state = TrackingState::kReinitialized;
+      result.note = "map re-seeded at the motion-model pose after " +
+                    std::to_string(consecutive_lost_) + " lost frames; last failure: " + failure;
+      result.keyframe_inserted = true;
+      consecutive_lost_ = 0;
+    }
+    result.map_ms = MillisecondsSince(start);
+  }
+  motion_.Update(result.world_from_camera, stamp);
+  result.map_keyframes = static_cast<int>(map_.num_keyframes());
+  result.map_points = static_cast<int>(map_.num_points());
+  return result;
+}
+
+PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
+                                             const Pose& predicted_camera_from_world,
+                                             std::vector<Match>& matches, std::string& failure,
+                                             TrackingResult& result) {
+  // Matching against the map around the prediction.
+  Clock::time_point start = Clock::now();
+  const double wide_radius = options_.matching.search_radius_px * options_.wide_search_factor;
+  CollectVisiblePoints(predicted_camera_from_world, -wide_radius);
+  matches.clear();
+  if (features.size() > 0 && !visible_ids_.empty())
+    matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
+                                predicted_camera_from_world, options_.matching, &visible_angles_);
+  result.match_ms = MillisecondsSince(start);
+
+  auto correspondences = [&](const std::vector<Match>& m, std::vector<Eigen::Vector3d>& points,
+                             std::vector<Eigen::Vector2d>& pixels) {
+    points.clear();
+    pixels.clear();
+    for (const Match& match : m) {
+      points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
+      pixels.push_back(features.pixels[static_cast<size_t>(match.feature_index)]);
+    }
+  };
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+
+  // Pose: refine the prediction; when that fails, EPnP + RANSAC on a wider search.
+  start = Clock::now();
+  PoseEstimate estimate;
+  failure.clear();
+  if (static_cast<int>(matches.size()) >= options_.min_matches) {
+    correspondences(matches, points, pixels);
+    estimate = RefinePose(points, pixels, camera_, predicted_camera_from_world, options_.pose);
+    if (estimate.ok && estimate.num_inliers < options_.min_matches) {
+      estimate.ok = false;
+      estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
+    }
+    if (!estimate.ok) failure = "refinement from the prediction failed (" + estimate.failure + ")";
+  } else {
+    failure = "only " + std::to_string(matches.size()) + " map matches (< " +
+              std::to_string(options_.min_matches) + ")";
+  }
+  result.pose_ms = MillisecondsSince(start);
+  if (!estimate.ok && features.size() > 0 && !visible_ids_.empty()) {
+    start = Clock::now();
+    MatchOptions wide = options_.matching;
+    wide.search_radius_px = wide_radius;
+    matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
+                                predicted_camera_from_world, wide, &visible_angles_);
+    result.match_ms += MillisecondsSince(start);
+    start = Clock::now();
+    if (static_cast<int>(matches.size()) >= options_.min_matches) {
+      correspondences(matches, points, pixels);
+      estimate = EstimatePose(points, pixels, camera_, options_.pose);
+      if (estimate.ok && estimate.num_inliers < options_.min_matches) {
+        estimate.ok = false;
+        estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
+      }
+      if (estimate.ok)
+        result.used_epnp = true;
+      else
+        failure += "; EPnP on " + std::to_string(matches.size()) + " wide matches failed (" +
+                   estimate.failure + ")";
+    } else {
+      failure += "; " + std::to_string(matches.size()) + " matches on the wide search";
+    }
+    result.pose_ms += MillisecondsSince(start);
+  }
+  result.num_matches = static_cast<int>(matches.size());
+  return estimate;
+}
+
+void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {
+  visible_ids_.clear();
+  visible_points_.clear();
+  visible_angles_.clear();
+  for (const auto& [id, point] : map_.points()) {
+    const Eigen::Vector3d p = camera_from_world * point.position_in_world;
+    if (p.z() < 0.05 || !camera_.InImage(camera_.Project(p), margin_px)) continue;
+    visible_ids_.push_back(id);
+    visible_points_.push_back(point.position_in_world);
+    visible_angles_.push_back(point.angle_deg);
+  }
+  visible_descriptors_.create(static_cast<int>(visible_ids_.size()), 32, CV_8UC1);
+  for (size_t i = 0; i < visible_ids_.size(); ++i)
+    map_.FindPoint(visible_ids_[i])->descriptor.copyTo(visible_descriptors_.row(static_cast<int>(i)));
+}
+
+bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp,
+                           const Pose& world_from_camera) {
+  int usable = 0;
+  for (double depth : features.depths) usable += HasDepth(depth) ? 1 : 0;
+  if (usable < options_.min_matches) return false;
+  map_.Clear();
+  Keyframe keyframe;
+  keyframe.frame_index = frame_index_;
+  keyframe.stamp = stamp;
+  keyframe.camera_from_world = world_from_camera.inverse();
+  keyframe.observations.reserve(static_cast<size_t>(usable));
+  for (size_t i = 0; i < features.size(); ++i) {
+    if (!HasDepth(features.depths[i])) continue;
+    const int64_t id = map_.AddPoint(world_from_camera * features.points_in_camera[i],
+                                     features.descriptors.row(static_cast<int>(i)), frame_index_,
+                                     features.keypoints[i].angle);
+    keyframe.observations.push_back({id, features.pixels[i], features.depths[i]});
+  }
+  map_.AddKeyframe(std::move(keyframe));
+  frames_since_keyframe_ = 0;
+  reference_tracked_ = 0;  // nothing tracked yet: the ratio criterion waits for a keyframe
+  return true;
+}
+
+Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
+                                  const std::vector<Match>& matches,
+                                  const std::vector<uint8_t>& inliers,
+                                  const Pose& world_from_camera, TrackingResult& result) {
+  Clock::time_point start = Clock::now();
+  Keyframe keyframe;
+  keyframe.frame_index = frame_index_;
+  keyframe.stamp = stamp;
+  keyframe.camera_from_world = world_from_camera.inverse();
+  std::vector<uint8_t> tracked(features.size(), 0);
+  for (size_t i = 0; i < matches.size(); ++i) {
+    if (!inliers[i]) continue;
+    const size_t f = static_cast<size_t>(matches[i].feature_index);
+    const int64_t id = visible_ids_[static_cast<size_t>(matches[i].point_index)];
+    tracked[f] = 1;
+    keyframe.observations.push_back(
+        {id, features.pixels[f], std::max(features.depths[f], 0.0)});
+    map_.SetAppearance(id, features.descriptors.row(static_cast<int>(f)), features.keypoints[f].angle);
+  }
+  // New points from the untracked features with depth, the nearest (most accurate) first.
+  std::vector<size_t> candidates;
+  for (size_t i = 0; i < features.size(); ++i)
+    if (!tracked[i] && HasDepth(features.depths[i])) candidates.push_back(i);
+  const size_t keep = std::min(candidates.size(), static_cast<size_t>(options_.max_new_points));
+  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
+                    candidates.end(), [&](size_t a, size_t b) {
+                      return features.depths[a] < features.depths[b] ||
+                             (features.depths[a] == features.depths[b] && a < b);
+                    });
+  candidates.resize(keep);
+  for (size_t i : candidates) {
+    const int64_t id = map_.AddPoint(world_from_camera * features.points_in_camera[i],
+                                     features.descriptors.row(static_cast<int>(i)), frame_index_,
+                                     features.keypoints[i].angle);
+    keyframe.observations.push_back({id, features.pixels[i], features.depths[i]});
+  }
+  map_.AddKeyframe(std::move(keyframe));
+  result.keyframe_inserted = true;
+  result.map_ms += MillisecondsSince(start);
+
+  start = Clock::now();
+  Pose refined = world_from_camera;
+  if (options_.local_ba.enabled) {
+    const BundleAdjustmentReport report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
+    if (report.ok) {
+      refined = map_.keyframes().back().camera_from_world.inverse();
+      result.local_ba_rms_px = report.final_inlier_rms_px;
+    }
+  }
+  result.local_ba_ms = MillisecondsSince(start);
+  frames_since_keyframe_ = 0;
+  // The inliers of the keyframe (as ORB-SLAM counts the reference keyframe's points seen by
+  // several keyframes): new points, seen once, do not count, or the ratio would fire on every
+  // frame where fewer features have depth and match than the keyframe had.
+  reference_tracked_ = static_cast<int>(std::count(inliers.begin(), inliers.end(), 1));
+  return refined;
+}
+
+}  // namespace dynvo

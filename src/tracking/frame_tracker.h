@@ -1,0 +1,104 @@
+#pragma once
+// Frame-to-local-map tracking: constant-velocity prediction, projection matching, pose
+// refinement (EPnP + RANSAC when the prediction fails), keyframe insertion with new map points
+// from the frame's depth, local bundle adjustment at each keyframe, a bounded map, and
+// recovery from failures. The world frame is the first frame's camera.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "features/frame_features.h"
+#include "mapping/bundle_adjustment.h"
+#include "mapping/keyframe_policy.h"
+#include "mapping/local_map.h"
+#include "pose/pose_solver.h"
+#include "pose/projection_matcher.h"
+#include "tracking/motion_model.h"
+#include "tracking/tracking_state.h"
+
+namespace dynvo {
+
+struct TrackerOptions {
+  MatchOptions matching;               // "matching.*"
+  PoseSolverOptions pose;              // "pose.*"
+  LocalMapOptions map;                 // "map.*"
+  KeyframeOptions keyframes;           // "keyframes.*"
+  BundleAdjustmentOptions local_ba;    // "local_ba.*"
+  int min_matches = 20;                // map matches / pose inliers needed to track; also the
+                                       // depth features needed to seed the map (>= 4)
+  double wide_search_factor = 3.0;     // search radius multiplier of the EPnP retry (>= 1)
+  int lost_frames_before_reseed = 3;   // consecutive failed frames before the map is re-seeded (>= 1)
+  int max_new_points = 500;            // new map points per keyframe, the nearest first (>= 0);
+                                       // bounds duplicates of points that failed to match
+  // Throws InputError naming the key ("tracking.min_matches ...", "pose.min_inliers ...")
+  // when this or any sub-option is out of range.
+  void Check() const;
+};
+
+struct TrackingResult {
+  Pose world_from_camera = Pose::Identity();  // always set (motion model when lost)
+  TrackingState state = TrackingState::kInitializing;
+  std::string note;               // why lost / reinitialised / not initialised, "" otherwise
+  int num_matches = 0;            // map matches used for the pose
+  int num_inliers = 0;            // pose inliers among them
+  bool used_epnp = false;         // the pose came from the EPnP + RANSAC retry
+  bool keyframe_inserted = false;
+  int map_keyframes = 0;          // local map size after this frame
+  int map_points = 0;
+  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only)
+  double match_ms = 0, pose_ms = 0, map_ms = 0, local_ba_ms = 0;  // per-stage wall times, ms
+};
+
+class FrameTracker {
+ public:
+  // Throws InputError when the camera or the options are invalid.
+  FrameTracker(const Camera& camera, const TrackerOptions& options);
+
+  // Tracks the (already filtered, static) features of one frame taken at `stamp` (seconds);
+  // always returns a pose. Frames before the first one with min_matches depth features get
+  // the identity (state kInitializing, with a note); that frame's camera is the world frame.
+  // Throws InputError when the feature arrays disagree in size.
+  TrackingResult Track(const FrameFeatures& features, double stamp);
+
+  const LocalMap& map() const { return map_; }
+  const TrackerOptions& options() const { return options_; }
+
+ private:
+  // Matches the frame to the map around the prediction and estimates its pose: refinement of
+  // the prediction, else EPnP + RANSAC on a wider search. Fills `matches` (those the estimate
+  // refers to), `failure` (why, when not ok) and the match/pose times of `result`.
+  PoseEstimate EstimateFramePose(const FrameFeatures& features,
+                                 const Pose& predicted_camera_from_world,
+                                 std::vector<Match>& matches, std::string& failure,
+                                 TrackingResult& result);
+  // Points of the map that may be visible from `camera_from_world` (margin in pixels).
+  void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
+  // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
+  // the feature stage's business) at `world_from_camera`;
+  // false (map untouched) when fewer than min_matches features have usable depth.
+  bool SeedMap(const FrameFeatures& features, double stamp, const Pose& world_from_camera);
+  // Makes the frame a keyframe: observations of its inlier matches plus new points from its
+  // other depth features; then local BA. Returns the (possibly refined) world_from_camera.
+  Pose InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
+                      const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
+                      TrackingResult& result);
+
+  Camera camera_;
+  TrackerOptions options_;
+  LocalMap map_;
+  ConstantVelocityModel motion_;
+  int64_t frame_index_ = -1;
+  bool initialized_ = false;
+  int frames_since_keyframe_ = 0;
+  int reference_tracked_ = 0;  // pose inliers of the last keyframe (0 after a seed)
+  int consecutive_lost_ = 0;
+  // Scratch of the current frame: the map points handed to the matcher.
+  std::vector<int64_t> visible_ids_;
+  std::vector<Eigen::Vector3d> visible_points_;
+  std::vector<float> visible_angles_;  // ORB angle of each point's reference observation
+  cv::Mat visible_descriptors_;
+};
+
+}  // namespace dynvo

@@ -1,0 +1,182 @@
+// The small stages of the detector, each alone: compensation, difference, threshold, morphology, regions.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "dynamic_mask/difference_threshold.h"
+#include "dynamic_mask/frame_difference.h"
+#include "dynamic_mask/mask_morphology.h"
+#include "dynamic_mask/mask_regions.h"
+#include "dynamic_mask/motion_compensation.h"
+#include "ego_motion/synthetic_frames.h"
+
+namespace dynvo {
+namespace {
+
+const cv::Size kImage(640, 480);
+
+int CountDifferent(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat diff;
+  cv::compare(a, b, diff, cv::CMP_NE);
+  return cv::countNonZero(diff);
+}
+
+TEST(CompensateMotion, IdentityKeepsTheImageAndIsAllValid) {
+  const cv::Mat source = test::RandomTexture(kImage, 3);
+  const CompensatedImage out = CompensateMotion(source, Eigen::Matrix3d::Identity(), kImage);
+  EXPECT_EQ(CountDifferent(out.image, source), 0);
+  EXPECT_EQ(cv::countNonZero(out.valid), kImage.area());
+}
+
+TEST(CompensateMotion, TranslationShiftsPixelsAndMarksTheUncoveredBorderInvalid) {
+  const cv::Mat source = test::RandomTexture(kImage, 3);
+  Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+  h(0, 2) = 10.0;  // x_target = x_source + 10
+  h(1, 2) = -5.0;  // y_target = y_source - 5
+  const CompensatedImage out = CompensateMotion(source, h, kImage);
+  // Integer shift: pixels are copied exactly.
+  EXPECT_EQ(CountDifferent(out.image(cv::Rect(10, 0, 630, 475)), source(cv::Rect(0, 5, 630, 475))), 0);
+  // Valid exactly where x - 10 in [0, 639] and y + 5 in [0, 479].
+  cv::Mat expected = cv::Mat::zeros(kImage, CV_8UC1);
+  expected(cv::Rect(10, 0, 630, 475)).setTo(255);
+  EXPECT_EQ(CountDifferent(out.valid, expected), 0);
+}
+
+TEST(CompensateMotion, RotationValidRegionMatchesThePreimageTest) {
+  const cv::Mat source = test::RandomTexture(kImage, 3);
+  const Eigen::Matrix3d h = test::SmallMotion(0.05, 8.0, -6.0, 2e-5, 1e-5);
+  const CompensatedImage out = CompensateMotion(source, h, kImage);
+  const Eigen::Matrix3d inverse = h.inverse();
+  int wrong = 0;
+  for (int y = 0; y < kImage.height; ++y)
+    for (int x = 0; x < kImage.width; ++x) {
+      const Eigen::Vector2d s = test::Transfer(inverse, Eigen::Vector2d(x, y));
+      const bool inside = s.x() >= 0 && s.y() >= 0 && s.x() <= kImage.width - 1 && s.y() <= kImage.height - 1;
+      wrong += inside != (out.valid.at<uint8_t>(y, x) != 0);
+    }
+  // Only the rasterised edge of the quadrilateral may disagree: at most ~1 px along its perimeter.
+  EXPECT_LT(wrong, 2 * (kImage.width + kImage.height));
+}
+
+TEST(AbsoluteDifference, IsZeroOutsideValid) {
+  cv::Mat a(4, 4, CV_8UC1, cv::Scalar(100)), b(4, 4, CV_8UC1, cv::Scalar(130)), valid(4, 4, CV_8UC1, cv::Scalar(255));
+  b.at<uint8_t>(1, 1) = 90;
+  valid.at<uint8_t>(0, 0) = 0;
+  const cv::Mat d = AbsoluteDifference(a, b, valid);
+  EXPECT_EQ(d.at<uint8_t>(0, 0), 0);
+  EXPECT_EQ(d.at<uint8_t>(1, 1), 10);
+  EXPECT_EQ(d.at<uint8_t>(3, 3), 30);
+  EXPECT_THROW(AbsoluteDifference(a, cv::Mat(3, 3, CV_8UC1)), InputError);
+}
+
+TEST(OtsuThreshold, BimodalImagePicksAThresholdBetweenTheModes) {
+  // Modes around 40 and 170 (noise sigma 8); Otsu must split between them.
+  cv::Mat image(200, 200, CV_8UC1);
+  cv::RNG rng(5);
+  rng.fill(image, cv::RNG::NORMAL, 40, 8);
+  cv::Mat high(200, 80, CV_8UC1);
+  rng.fill(high, cv::RNG::NORMAL, 170, 8);
+  high.copyTo(image(cv::Rect(0, 0, 80, 200)));
+  const int t = OtsuThreshold(image);
+  EXPECT_GT(t, 40 + 3 * 8);
+  EXPECT_LT(t, 170 - 3 * 8);
+  // Same result as OpenCV's own Otsu when every pixel is valid.
+  cv::Mat ignored;
+  EXPECT_EQ(t, static_cast<int>(cv::threshold(image, ignored, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU)));
+}
+
+TEST(OtsuThreshold, IgnoresInvalidPixels) {
+  // Valid pixels: modes 10 and 60. Invalid pixels: a large block of 250 that would pull the
+  // threshold above 60 if it were counted.
+  cv::Mat image(100, 100, CV_8UC1, cv::Scalar(10));
+  image(cv::Rect(0, 0, 30, 100)).setTo(60);
+  image(cv::Rect(50, 0, 50, 100)).setTo(250);
+  cv::Mat valid(100, 100, CV_8UC1, cv::Scalar(255));
+  valid(cv::Rect(50, 0, 50, 100)).setTo(0);
+  const int with_mask = OtsuThreshold(image, valid);
+  EXPECT_GE(with_mask, 10);
+  EXPECT_LT(with_mask, 60);
+  EXPECT_GE(OtsuThreshold(image), 60);  // counted, the block moves the threshold
+  EXPECT_EQ(OtsuThreshold(image, cv::Mat::zeros(100, 100, CV_8UC1)), 0);  // no valid pixel
+}
+
+TEST(DifferenceThreshold, FixedAndFlooredOtsu) {
+  cv::Mat image(10, 10, CV_8UC1, cv::Scalar(2));
+  image(cv::Rect(0, 0, 5, 10)).setTo(6);
+  DynamicMaskOptions options;
+  EXPECT_EQ(DifferenceThreshold(image, cv::Mat(), options), 2);  // Otsu between 2 and 6
+  options.min_otsu_threshold = 12;
+  EXPECT_EQ(DifferenceThreshold(image, cv::Mat(), options), 12);
+  options.threshold = ThresholdMethod::kFixed;
+  options.fixed_threshold = 4;
+  EXPECT_EQ(DifferenceThreshold(image, cv::Mat(), options), 4);
+  cv::Mat binary;
+  Binarize(image, 4, &binary);
+  EXPECT_EQ(cv::countNonZero(binary), 50);
+  EXPECT_EQ(binary.at<uint8_t>(0, 0), 255);
+}
+
+TEST(MaskMorphology, ErosionRemovesSpecksSmallerThanTheKernel) {
+  cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
+  mask(cv::Rect(10, 10, 3, 3)).setTo(255);    // speck 3x3 < 4: gone after one erosion
+  mask(cv::Rect(30, 10, 7, 7)).setTo(255);    // 7x7: 4x4 left after one 4x4 erosion, 1x1 after two
+  mask(cv::Rect(50, 50, 30, 20)).setTo(255);  // big region: shrinks by 3 px per side over two 4x4 erosions
+  cv::Mat once = mask.clone();
+  ErodeMask(MorphShape::kRect, 4, 1, &once);
+  EXPECT_EQ(cv::countNonZero(once(cv::Rect(0, 0, 20, 20))), 0);
+  EXPECT_EQ(cv::countNonZero(once(cv::Rect(25, 5, 20, 20))), 4 * 4);
+  cv::Mat twice = mask.clone();
+  ErodeMask(MorphShape::kRect, 4, 2, &twice);
+  EXPECT_EQ(cv::countNonZero(twice(cv::Rect(25, 5, 20, 20))), 1);
+  EXPECT_EQ(cv::countNonZero(twice(cv::Rect(45, 45, 50, 50))), (30 - 6) * (20 - 6));
+  // Iterations 0 or size 0: unchanged.
+  cv::Mat same = mask.clone();
+  ErodeMask(MorphShape::kRect, 4, 0, &same);
+  ErodeMask(MorphShape::kRect, 0, 2, &same);
+  EXPECT_EQ(CountDifferent(same, mask), 0);
+}
+
+TEST(MaskMorphology, DilationGrowsByTheKernel) {
+  cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
+  mask.at<uint8_t>(50, 50) = 255;
+  cv::Mat rect = mask.clone();
+  DilateMask(MorphShape::kRect, 16, 1, &rect);
+  EXPECT_EQ(cv::countNonZero(rect), 16 * 16);
+  const cv::Rect box = cv::boundingRect(rect);
+  EXPECT_EQ(box, cv::Rect(50 - 7, 50 - 7, 16, 16));  // even side: 7 px grown before, 8 after
+  cv::Mat rect_twice = mask.clone();
+  DilateMask(MorphShape::kRect, 5, 2, &rect_twice);
+  EXPECT_EQ(cv::countNonZero(rect_twice), 9 * 9);
+  cv::Mat ellipse = mask.clone();
+  DilateMask(MorphShape::kEllipse, 16, 1, &ellipse);
+  EXPECT_EQ(cv::countNonZero(ellipse), cv::countNonZero(MorphKernel(MorphShape::kEllipse, 16)));
+  EXPECT_LT(cv::countNonZero(ellipse), 16 * 16);
+  cv::Mat cross = mask.clone();
+  DilateMask(MorphShape::kCross, 5, 1, &cross);
+  EXPECT_EQ(cv::countNonZero(cross), 9);
+}
+
+TEST(MaskMorphology, CleanMaskErodesThenDilates) {
+  cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
+  mask(cv::Rect(5, 5, 2, 2)).setTo(255);     // noise: removed, not regrown
+  mask(cv::Rect(40, 40, 20, 20)).setTo(255);  // object: 20 -> 14 -> 29 (16x16 dilation adds 15)
+  CleanMask(DynamicMaskOptions(), &mask);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(0, 0, 20, 20))), 0);
+  EXPECT_EQ(cv::countNonZero(mask), 29 * 29);
+}
+
+TEST(MaskRegions, PointsOnNonZeroPixelsAreInside) {
+  cv::Mat mask = cv::Mat::zeros(50, 50, CV_8UC1);
+  mask(cv::Rect(10, 10, 10, 10)).setTo(255);
+  EXPECT_TRUE(InMaskRegion(mask, {10.f, 10.f}));
+  EXPECT_TRUE(InMaskRegion(mask, {19.4f, 19.4f}));
+  EXPECT_FALSE(InMaskRegion(mask, {19.6f, 15.f}));  // rounds to column 20
+  EXPECT_FALSE(InMaskRegion(mask, {-3.f, 15.f}));
+  EXPECT_FALSE(InMaskRegion(cv::Mat(), {15.f, 15.f}));
+  const std::vector<uint8_t> flags = StaticPointFlags(mask, {{15.f, 15.f}, {30.f, 30.f}});
+  EXPECT_EQ(flags, (std::vector<uint8_t>{0, 1}));
+}
+
+}  // namespace
+}  // namespace dynvo

@@ -1,0 +1,177 @@
+#include "mapping/bundle_adjustment.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace dynvo {
+namespace {
+
+// A synthetic map: `num_keyframes` cameras moving along x looking at points 2-4 m ahead,
+// each observing every point it sees at its exact (or noisy) projection, with exact depth.
+struct Scene {
+  Camera camera;
+  std::vector<Pose> true_camera_from_world;
+  std::vector<Eigen::Vector3d> true_points;
+  LocalMap map{LocalMapOptions{}};
+  std::vector<int64_t> point_ids;
+};
+
+void BuildScene(Scene& s, int num_keyframes, double pixel_noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(-1.5, 1.5), uy(-1.0, 1.0), uz(2.0, 4.0);
+  std::normal_distribution<double> noise(0.0, pixel_noise > 0 ? pixel_noise : 1.0);
+  for (int i = 0; i < 400; ++i) s.true_points.emplace_back(ux(rng), uy(rng), uz(rng));
+  for (const Eigen::Vector3d& p : s.true_points)
+    s.point_ids.push_back(s.map.AddPoint(p, cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 0));
+  for (int k = 0; k < num_keyframes; ++k) {
+    const Pose world_from_camera =
+        PoseFromAxisAngle({0.0, 0.02 * k, 0.01 * k}, {0.08 * k, 0.02 * k, 0.0});
+    const Pose camera_from_world = world_from_camera.inverse();
+    s.true_camera_from_world.push_back(camera_from_world);
+    Keyframe keyframe;
+    keyframe.frame_index = 5 * k;
+    keyframe.camera_from_world = camera_from_world;
+    for (size_t i = 0; i < s.true_points.size(); ++i) {
+      const Eigen::Vector3d pc = camera_from_world * s.true_points[i];
+      Eigen::Vector2d px = s.camera.Project(pc);
+      if (pc.z() < 0.1 || !s.camera.InImage(px)) continue;
+      if (pixel_noise > 0) px += Eigen::Vector2d(noise(rng), noise(rng));
+      keyframe.observations.push_back({s.point_ids[i], px, pc.z()});
+    }
+    s.map.AddKeyframe(keyframe);
+  }
+}
+
+double TranslationError(const Pose& a, const Pose& b) {
+  return (a.inverse().translation() - b.inverse().translation()).norm();
+}
+
+TEST(BundleAdjustmentOptions, CheckNamesTheKey) {
+  BundleAdjustmentOptions options;
+  EXPECT_NO_THROW(options.Check());
+  options.window_keyframes = 0;
+  try {
+    options.Check();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "local_ba.window_keyframes must be >= 1, got 0");
+  }
+  options = {};
+  options.huber_delta_px = 0;
+  EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.outlier_threshold_px = -1;
+  EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.max_iterations = 0;
+  EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.virtual_baseline_m = -0.1;
+  EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.rounds = 0;
+  EXPECT_THROW(options.Check(), InputError);
+}
+
+void CheckLowersReprojectionErrorOfPerturbedKeyframes(double virtual_baseline_m) {
+  SCOPED_TRACE("virtual_baseline_m " + std::to_string(virtual_baseline_m));
+  Scene s;
+  BuildScene(s, 7, 0.5, 3);
+  ASSERT_EQ(s.map.num_keyframes(), 7u);
+  // Perturb the 5 window keyframes (2 cm, ~1 degree) and every point (2 cm).
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (size_t k = 2; k < 7; ++k) {
+    const Pose delta = PoseFromAxisAngle({0.01 * n01(rng), 0.01 * n01(rng), 0.01 * n01(rng)},
+                                         {0.02 * n01(rng), 0.02 * n01(rng), 0.02 * n01(rng)});
+    s.map.SetKeyframePose(k, delta * s.true_camera_from_world[k]);
+  }
+  for (size_t i = 0; i < s.point_ids.size(); ++i)
+    s.map.SetPointPosition(s.point_ids[i],
+                           s.true_points[i] + 0.02 * Eigen::Vector3d(n01(rng), n01(rng), n01(rng)));
+  double perturbed_error = 0;
+  for (size_t k = 2; k < 7; ++k)
+    perturbed_error += TranslationError(s.map.keyframes()[k].camera_from_world, s.true_camera_from_world[k]);
+
+  BundleAdjustmentOptions options;  // window 5, 10 iterations
+  options.virtual_baseline_m = virtual_baseline_m;
+  const BundleAdjustmentReport report = RunLocalBundleAdjustment(s.map, s.camera, options);
+  ASSERT_TRUE(report.ok) << report.failure;
+  EXPECT_EQ(report.num_keyframes_optimised, 5);
+  EXPECT_EQ(report.num_keyframes_fixed, 2);
+  EXPECT_GT(report.initial_rms_px, 5.0);
+  // Pixel noise is 0.5 px per axis: the RMS of a 2D residual at the optimum is below
+  // 0.5 * sqrt(2) ~ 0.71 px (parameters absorb part of the noise).
+  EXPECT_LT(report.final_rms_px, 0.75);
+  EXPECT_LT(report.final_rms_px, 0.2 * report.initial_rms_px);
+  EXPECT_EQ(report.num_outliers_removed, 0);  // 4 px is > 5 sigma of the noise
+
+  // Fixed keyframes untouched, optimised ones much closer to the truth (the gauge is fixed
+  // by the two oldest, so truth is the optimum up to noise).
+  for (size_t k = 0; k < 2; ++k)
+    EXPECT_TRUE(s.map.keyframes()[k].camera_from_world.isApprox(s.true_camera_from_world[k], 1e-12));
+  double refined_error = 0;
+  for (size_t k = 2; k < 7; ++k) {
+    const double e = TranslationError(s.map.keyframes()[k].camera_from_world, s.true_camera_from_world[k]);
+    EXPECT_LT(e, 0.005) << "keyframe " << k;
+    refined_error += e;
+  }
+  EXPECT_LT(refined_error, 0.2 * perturbed_error);
+}
+
+TEST(BundleAdjustment, LowersReprojectionErrorOfPerturbedKeyframes) {
+  CheckLowersReprojectionErrorOfPerturbedKeyframes(0.08);  // with the depth term
+  CheckLowersReprojectionErrorOfPerturbedKeyframes(0.0);   // reprojection only
+}
+
+TEST(BundleAdjustment, RemovesGrossOutliers) {
+  Scene s;
+  BuildScene(s, 4, 0.0, 5);
+  // Corrupt 10 observations of the newest keyframe by 30 px: Huber keeps them from dragging
+  // the solution, and the final check removes them.
+  Keyframe corrupted = s.map.keyframes().back();
+  ASSERT_GT(corrupted.observations.size(), 50u);
+  LocalMap map;
+  for (size_t i = 0; i < s.true_points.size(); ++i)
+    map.AddPoint(s.true_points[i], cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 0);
+  for (size_t k = 0; k < s.map.num_keyframes(); ++k) {
+    Keyframe keyframe = s.map.keyframes()[k];
+    if (k + 1 == s.map.num_keyframes())
+      for (int j = 0; j < 10; ++j) keyframe.observations[5 * j].pixel += Eigen::Vector2d(30, -20);
+    map.AddKeyframe(keyframe);
+  }
+  const size_t points_before = map.num_points();
+  const BundleAdjustmentReport report = RunLocalBundleAdjustment(map, s.camera, {});
+  ASSERT_TRUE(report.ok) << report.failure;
+  EXPECT_EQ(report.num_outliers_removed, 10);
+  // Noise-free otherwise: once the outliers are out of the second round, the exact solution
+  // is the optimum again.
+  EXPECT_LT(report.final_inlier_rms_px, 0.01);
+  EXPECT_LT(TranslationError(map.keyframes().back().camera_from_world, s.true_camera_from_world.back()),
+            1e-4);
+  EXPECT_LE(map.num_points(), points_before);
+}
+
+TEST(BundleAdjustment, DisabledOrTooSmallLeavesTheMapAlone) {
+  Scene s;
+  BuildScene(s, 3, 0.0, 7);
+  s.map.SetKeyframePose(2, PoseFromAxisAngle({0, 0, 0}, {1, 0, 0}));
+  BundleAdjustmentOptions options;
+  options.enabled = false;
+  BundleAdjustmentReport report = RunLocalBundleAdjustment(s.map, s.camera, options);
+  EXPECT_FALSE(report.ok);
+  EXPECT_EQ(report.failure, "disabled");
+  EXPECT_EQ(s.map.keyframes()[2].camera_from_world.translation().x(), 1.0);
+
+  LocalMap single;
+  single.AddKeyframe(Keyframe{});
+  report = RunLocalBundleAdjustment(single, s.camera, {});
+  EXPECT_FALSE(report.ok);
+  EXPECT_FALSE(report.failure.empty());
+}
+
+}  // namespace
+}  // namespace dynvo
