@@ -1,0 +1,105 @@
+#include "synth/camera_path.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace dynvo {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double Deg(double d) { return d * kPi / 180.0; }
+double Wave(double seconds, double period, double phase = 0.0) {
+  return std::sin(2.0 * kPi * seconds / period + phase);
+}
+
+// Rotation of a camera at `position` looking along world `forward` with world z up.
+Eigen::Matrix3d LookRotation(const Eigen::Vector3d& forward) {
+  const Eigen::Vector3d z = forward.normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  const Eigen::Vector3d y = z.cross(x);
+  Eigen::Matrix3d r;
+  r.col(0) = x;
+  r.col(1) = y;
+  r.col(2) = z;
+  return r;
+}
+
+// Start pose: at 1.4 m height near the back of the room, looking forward and 12 deg down.
+Pose StartPose() {
+  Pose p = Pose::Identity();
+  p.linear() = LookRotation({0.0, std::cos(Deg(12)), -std::sin(Deg(12))});
+  p.translation() = Eigen::Vector3d(0.0, 0.0, 1.4);
+  return p;
+}
+
+// Rotation about the camera's own axes (roll about z, pitch about x, yaw about y).
+Eigen::Matrix3d CameraRpy(double roll, double pitch, double yaw) {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
+      .toRotationMatrix();
+}
+
+}  // namespace
+
+CameraPathPreset ParseCameraPathPreset(const std::string& name, const std::string& key) {
+  if (name == "static") return CameraPathPreset::kStatic;
+  if (name == "xyz") return CameraPathPreset::kXyz;
+  if (name == "halfsphere") return CameraPathPreset::kHalfsphere;
+  if (name == "rpy") return CameraPathPreset::kRpy;
+  throw InputError(key + " must be one of static, xyz, halfsphere, rpy, got '" + name + "'");
+}
+
+std::string CameraPathPresetName(CameraPathPreset preset) {
+  switch (preset) {
+    case CameraPathPreset::kStatic: return "static";
+    case CameraPathPreset::kXyz: return "xyz";
+    case CameraPathPreset::kHalfsphere: return "halfsphere";
+    case CameraPathPreset::kRpy: return "rpy";
+  }
+  return "static";
+}
+
+Pose CameraPathPose(CameraPathPreset preset, double s) {
+  const Pose start = StartPose();
+  Pose p = start;
+  switch (preset) {
+    case CameraPathPreset::kStatic: {
+      const Eigen::Vector3d jitter(0.002 * Wave(s, 3.1), 0.0015 * Wave(s, 4.3, 1.0), 0.002 * Wave(s, 2.7, 2.0));
+      p.translation() += jitter;
+      p.linear() = start.linear() * CameraRpy(Deg(0.2) * Wave(s, 3.7), Deg(0.25) * Wave(s, 2.9, 0.5),
+                                              Deg(0.2) * Wave(s, 4.1, 1.5));
+      break;
+    }
+    case CameraPathPreset::kXyz: {
+      // Each world axis in turn dominates, like the hand-held TUM xyz runs.
+      const Eigen::Vector3d offset(0.20 * Wave(s, 6.0), 0.15 * Wave(s, 9.0, 0.7), 0.15 * Wave(s, 7.5, 1.9));
+      p.translation() += offset;
+      p.linear() = start.linear() * CameraRpy(Deg(1.5) * Wave(s, 5.3), Deg(1.5) * Wave(s, 6.1, 0.4),
+                                              Deg(1.5) * Wave(s, 7.1, 1.1));
+      break;
+    }
+    case CameraPathPreset::kRpy: {
+      p.translation() += Eigen::Vector3d(0.01 * Wave(s, 5.0), 0.01 * Wave(s, 6.0), 0.01 * Wave(s, 7.0));
+      p.linear() = start.linear() * CameraRpy(Deg(12) * Wave(s, 5.1, 0.3), Deg(10) * Wave(s, 7.3, 1.2),
+                                              Deg(15) * Wave(s, 6.0));
+      break;
+    }
+    case CameraPathPreset::kHalfsphere: {
+      // Orbit of radius 1.1 m around a point 1.1 m in front of the start position.
+      const double radius = 1.1;
+      const Eigen::Vector3d centre = start.translation() + radius * start.linear().col(2);
+      const double azimuth = Deg(55) * Wave(s, 16.0);
+      const double elevation = Deg(12) + Deg(12) * Wave(s, 11.0, 0.8);
+      const Eigen::Vector3d from_centre(-std::sin(azimuth) * std::cos(elevation),
+                                        -std::cos(azimuth) * std::cos(elevation), std::sin(elevation));
+      p.translation() = centre + radius * from_centre;
+      p.linear() = LookRotation(-from_centre) * CameraRpy(Deg(2) * Wave(s, 4.0), 0, 0);
+      break;
+    }
+  }
+  return p;
+}
+
+}  // namespace dynvo

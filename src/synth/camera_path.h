@@ -1,0 +1,25 @@
+#pragma once
+// Camera trajectories like the TUM presets, as smooth functions of time.
+
+#include <string>
+
+#include "core/pose.h"
+
+namespace dynvo {
+
+enum class CameraPathPreset {
+  kStatic,      // tripod-like: millimetre and sub-degree jitter
+  kXyz,         // translation along each axis, about +-0.2 m, rotation nearly fixed
+  kHalfsphere,  // arc of about 1 m radius around a point in front, looking at it
+  kRpy,         // rotation about each axis, about +-15 degrees, position nearly fixed
+};
+
+// Parses "static", "xyz", "halfsphere", "rpy"; throws InputError naming `key` otherwise.
+CameraPathPreset ParseCameraPathPreset(const std::string& name, const std::string& key);
+std::string CameraPathPresetName(CameraPathPreset preset);
+
+// world_from_camera at `seconds` after the start (camera frame: x right, y down, z forward),
+// in the synthetic room frame (x right, y forward, z up). Smooth and deterministic.
+Pose CameraPathPose(CameraPathPreset preset, double seconds);
+
+}  // namespace dynvo

@@ -1,0 +1,34 @@
+#pragma once
+// Person cut-outs for insertion into real sequences: a BGRA image (alpha = person) from a
+// photo and its mask, from a photo and a box (GrabCut), or drawn procedurally.
+
+#include <cstdint>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace dynvo {
+
+struct PersonCutout {
+  cv::Mat bgra;  // CV_8UC4, cropped to the person; alpha 255 on the person, 0 elsewhere
+};
+
+// The cut-out of `bgr` where `mask` (CV_8U, same size) is non-zero. Transparent pixels take
+// the person's mean colour so that filtering does not bleed the background in.
+// Throws InputError naming `source` when sizes differ or the mask is empty.
+PersonCutout CutoutFromMask(const cv::Mat& bgr, const cv::Mat& mask, const std::string& source);
+
+// Reads an image and a mask PNG (non-zero = person); throws InputError naming the file.
+PersonCutout LoadPersonCutout(const std::string& image_path, const std::string& mask_path);
+
+// Segments the person inside `box` with GrabCut (`iterations` rounds, deterministic from
+// `seed`). Throws InputError naming `source` when the box is not inside the image or
+// nothing is segmented.
+PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
+                               const std::string& source);
+
+// A textured standing-person silhouette (head, torso, arms, legs; clothes patterns),
+// 200 x 600 pixels, deterministic from the seed: the default when no photo is given.
+PersonCutout MakeSyntheticPersonCutout(std::uint32_t seed);
+
+}  // namespace dynvo

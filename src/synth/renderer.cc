@@ -1,0 +1,223 @@
+#include "synth/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <opencv2/calib3d.hpp>
+
+namespace dynvo {
+namespace {
+
+constexpr double kNear = 0.05;  // metres: nothing nearer is drawn
+
+using Polygon = std::vector<Eigen::Vector3d>;
+
+// Keeps the part of the polygon where plane(p) = n.p + d >= 0 (Sutherland-Hodgman).
+Polygon ClipPolygon(const Polygon& in, const Eigen::Vector3d& n, double d) {
+  Polygon out;
+  const size_t count = in.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d& a = in[i];
+    const Eigen::Vector3d& b = in[(i + 1) % count];
+    const double da = n.dot(a) + d, db = n.dot(b) + d;
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+}  // namespace
+
+Renderer::Renderer(const Camera& camera) : camera_(camera) {
+  camera_.Check("renderer camera");
+  const int w = camera_.width, h = camera_.height;
+  rays_.create(h, w, CV_32FC2);
+  if (!camera_.HasDistortion()) {
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        rays_.at<cv::Vec2f>(y, x) = cv::Vec2f(static_cast<float>((x - camera_.cx) / camera_.fx),
+                                              static_cast<float>((y - camera_.cy) / camera_.fy));
+  } else {
+    std::vector<cv::Point2f> pixels;
+    pixels.reserve(static_cast<size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) pixels.emplace_back(static_cast<float>(x), static_cast<float>(y));
+    std::vector<cv::Point2f> normalised;
+    cv::undistortPoints(pixels, normalised, camera_.K(), camera_.DistCoeffs(), cv::noArray(), cv::noArray(),
+                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-10));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const cv::Point2f& p = normalised[static_cast<size_t>(y) * w + x];
+        rays_.at<cv::Vec2f>(y, x) = cv::Vec2f(p.x, p.y);
+      }
+  }
+  double mn[2] = {1e9, 1e9}, mx[2] = {-1e9, -1e9};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 2; ++c) {
+        mn[c] = std::min(mn[c], static_cast<double>(rays_.at<cv::Vec2f>(y, x)[c]));
+        mx[c] = std::max(mx[c], static_cast<double>(rays_.at<cv::Vec2f>(y, x)[c]));
+      }
+  const double mx_margin = 0.05 * (mx[0] - mn[0]), my_margin = 0.05 * (mx[1] - mn[1]);
+  x_min_ = mn[0] - mx_margin;
+  x_max_ = mx[0] + mx_margin;
+  y_min_ = mn[1] - my_margin;
+  y_max_ = mx[1] + my_margin;
+}
+
+Eigen::Vector2d Renderer::ProjectPoint(const Eigen::Vector3d& p) const {
+  const double x = p.x() / p.z(), y = p.y() / p.z();
+  const auto& k = camera_.distortion;  // k1 k2 p1 p2 k3, OpenCV's model
+  const double r2 = x * x + y * y;
+  const double radial = 1 + k[0] * r2 + k[1] * r2 * r2 + k[4] * r2 * r2 * r2;
+  const double xd = x * radial + 2 * k[2] * x * y + k[3] * (r2 + 2 * x * x);
+  const double yd = y * radial + k[2] * (r2 + 2 * y * y) + 2 * k[3] * x * y;
+  return {camera_.fx * xd + camera_.cx, camera_.fy * yd + camera_.cy};
+}
+
+RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world) const {
+  const int w = camera_.width, h = camera_.height;
+  cv::Mat zbuf(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
+  cv::Mat index(h, w, CV_32S, cv::Scalar(-1));
+  cv::Mat coords(h, w, CV_32FC2);
+  std::vector<Eigen::Vector3d> normals(quads.size(), Eigen::Vector3d::UnitZ());
+  const Eigen::Matrix3d rot = camera_from_world.linear();
+  const bool distorted = camera_.HasDistortion();
+
+  for (size_t qi = 0; qi < quads.size(); ++qi) {
+    const TexturedQuad& quad = quads[qi];
+    if (!quad.texture || quad.texture->levels.empty()) continue;
+    const Eigen::Vector3d p0 = camera_from_world * quad.origin;
+    const Eigen::Vector3d u = rot * quad.edge_u, v = rot * quad.edge_v;
+    normals[qi] = u.cross(v).normalized();
+    Polygon poly = {p0, p0 + u, p0 + u + v, p0 + v};
+    poly = ClipPolygon(poly, Eigen::Vector3d(0, 0, 1), -kNear);
+    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(1, 0, -x_min_), 0);
+    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(-1, 0, x_max_), 0);
+    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, 1, -y_min_), 0);
+    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, -1, y_max_), 0);
+    if (poly.size() < 3) continue;
+    double bx0 = 1e18, by0 = 1e18, bx1 = -1e18, by1 = -1e18;
+    const int samples = distorted ? 8 : 1;
+    for (size_t i = 0; i < poly.size(); ++i)
+      for (int s = 0; s < samples; ++s) {
+        const Eigen::Vector3d p = poly[i] + (poly[(i + 1) % poly.size()] - poly[i]) * (double(s) / samples);
+        const Eigen::Vector2d px = distorted ? ProjectPoint(p) : camera_.Project(p);
+        bx0 = std::min(bx0, px.x());
+        by0 = std::min(by0, px.y());
+        bx1 = std::max(bx1, px.x());
+        by1 = std::max(by1, px.y());
+      }
+    const int margin = distorted ? 3 : 1;
+    const int x0 = std::max(0, static_cast<int>(std::floor(bx0)) - margin);
+    const int y0 = std::max(0, static_cast<int>(std::floor(by0)) - margin);
+    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(bx1)) + margin);
+    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(by1)) + margin);
+    if (x0 > x1 || y0 > y1) continue;
+
+    Eigen::Matrix3d a;
+    a.col(0) = u;
+    a.col(1) = v;
+    a.col(2) = p0;
+    if (std::abs(a.determinant()) < 1e-12) continue;  // seen exactly edge-on
+    const Eigen::Matrix3d m = a.inverse();
+    const float m00 = float(m(0, 0)), m01 = float(m(0, 1)), m02 = float(m(0, 2));
+    const float m10 = float(m(1, 0)), m11 = float(m(1, 1)), m12 = float(m(1, 2));
+    const float m20 = float(m(2, 0)), m21 = float(m(2, 1)), m22 = float(m(2, 2));
+    const cv::Mat& base = quad.texture->levels[0];
+    const bool has_alpha = base.channels() == 4;
+    const float z_near = static_cast<float>(kNear);
+    for (int y = y0; y <= y1; ++y) {
+      const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
+      float* zrow = zbuf.ptr<float>(y);
+      int* irow = index.ptr<int>(y);
+      cv::Vec2f* crow = coords.ptr<cv::Vec2f>(y);
+      for (int x = x0; x <= x1; ++x) {
+        const float rx = ray[x][0], ry = ray[x][1];
+        const float q2 = m20 * rx + m21 * ry + m22;
+        if (q2 <= 0.0f) continue;
+        const float z = 1.0f / q2;
+        if (z >= zrow[x] || z < z_near) continue;
+        const float qa = (m00 * rx + m01 * ry + m02) * z;
+        if (qa < 0.0f || qa >= 1.0f) continue;
+        const float qb = (m10 * rx + m11 * ry + m12) * z;
+        if (qb < 0.0f || qb >= 1.0f) continue;
+        if (has_alpha) {
+          const int tx = std::min(base.cols - 1, static_cast<int>(qa * base.cols));
+          const int ty = std::min(base.rows - 1, static_cast<int>(qb * base.rows));
+          if (base.ptr<cv::Vec4b>(ty)[tx][3] < 128) continue;
+        }
+        zrow[x] = z;
+        irow[x] = static_cast<int>(qi);
+        crow[x] = cv::Vec2f(qa, qb);
+      }
+    }
+  }
+
+  RenderResult result;
+  result.bgr.create(h, w, CV_8UC3);
+  result.bgr.setTo(cv::Scalar::all(0));
+  result.depth.create(h, w, CV_32F);
+  result.depth.setTo(0);
+  result.object_id.create(h, w, CV_16U);
+  result.object_id.setTo(0);
+  // Per quad: normal in the camera frame and 1 / (focal * texel)^2 for the mip level choice.
+  const double focal = 0.5 * (camera_.fx + camera_.fy);
+  std::vector<float> inv_footprint2(quads.size(), 0.0f);
+  for (size_t qi = 0; qi < quads.size(); ++qi)
+    if (quads[qi].texture) {
+      const double f = focal * quads[qi].texture->texel_size_m;
+      inv_footprint2[qi] = static_cast<float>(1.0 / (f * f));
+    }
+  // Level L is used from (texels per pixel) >= 2^(L - 0.3); compared squared.
+  float level_threshold2[8];
+  for (int l = 0; l < 8; ++l) level_threshold2[l] = std::pow(2.0f, 2.0f * (l + 1) - 0.6f);
+  for (int y = 0; y < h; ++y) {
+    const int* irow = index.ptr<int>(y);
+    const float* zrow = zbuf.ptr<float>(y);
+    const cv::Vec2f* crow = coords.ptr<cv::Vec2f>(y);
+    const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
+    cv::Vec3b* out = result.bgr.ptr<cv::Vec3b>(y);
+    float* dout = result.depth.ptr<float>(y);
+    std::uint16_t* iout = result.object_id.ptr<std::uint16_t>(y);
+    for (int x = 0; x < w; ++x) {
+      const int qi = irow[x];
+      if (qi < 0) continue;
+      const TexturedQuad& quad = quads[static_cast<size_t>(qi)];
+      const Texture& tex = *quad.texture;
+      const float z = zrow[x];
+      dout[x] = z;
+      iout[x] = static_cast<std::uint16_t>(std::clamp(quad.object_id, 0, 65535));
+      // Mip level from the texel footprint (texels per pixel), stretched by the viewing
+      // obliquity: squared, (z |r| / (f texel))^2 / cos, cos = |n.r| / |r|.
+      const Eigen::Vector3d& n = normals[static_cast<size_t>(qi)];
+      const float rx = ray[x][0], ry = ray[x][1];
+      const float r2 = rx * rx + ry * ry + 1.0f;
+      const float cosine = std::max(0.05f, std::abs(float(n.x()) * rx + float(n.y()) * ry + float(n.z())) /
+                                               std::sqrt(r2));
+      const float footprint2 = z * z * r2 * inv_footprint2[static_cast<size_t>(qi)] / cosine;
+      const int max_level = static_cast<int>(tex.levels.size()) - 1;
+      int level = 0;
+      while (level < max_level && footprint2 >= level_threshold2[level]) ++level;
+      const cv::Mat& img = tex.levels[static_cast<size_t>(level)];
+      const float fu = std::clamp(crow[x][0] * img.cols - 0.5f, 0.0f, img.cols - 1.001f);
+      const float fv = std::clamp(crow[x][1] * img.rows - 0.5f, 0.0f, img.rows - 1.001f);
+      const int iu = static_cast<int>(fu), iv = static_cast<int>(fv);
+      const float du = fu - iu, dv = fv - iv;
+      const int cn = img.channels();
+      const uchar* r0 = img.ptr<uchar>(iv) + iu * cn;
+      const uchar* r1 = img.ptr<uchar>(std::min(iv + 1, img.rows - 1)) + iu * cn;
+      const int step = iu + 1 < img.cols ? cn : 0;
+      for (int c = 0; c < 3; ++c) {
+        const float top = r0[c] + du * (r0[c + step] - r0[c]);
+        const float bottom = r1[c] + du * (r1[c + step] - r1[c]);
+        out[x][c] = cv::saturate_cast<uchar>((top + dv * (bottom - top)) * quad.shade);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace dynvo

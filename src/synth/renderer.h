@@ -1,0 +1,43 @@
+#pragma once
+// Z-buffered rendering of textured quads into a camera with optional Brown-Conrady
+// distortion: exact per-pixel ray/plane intersection (no tessellation), trilinear-free
+// mip-mapped bilinear texture lookup, one pass for visibility and one for colour.
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/camera.h"
+#include "core/pose.h"
+#include "synth/scene.h"
+
+namespace dynvo {
+
+struct RenderResult {
+  cv::Mat bgr;        // CV_8UC3, black where nothing is seen
+  cv::Mat depth;      // CV_32F, metres along the optical axis (z), 0 where nothing is seen
+  cv::Mat object_id;  // CV_16U, object_id of the visible quad, 0 for static scene or nothing
+};
+
+class Renderer {
+ public:
+  // Precomputes one viewing ray per pixel (undistorted through the camera's distortion).
+  // Throws InputError when the camera is invalid.
+  explicit Renderer(const Camera& camera);
+
+  // The quads as seen from `camera_from_world`: each pixel shows the nearest quad whose
+  // plane its ray hits inside the quad (with texture alpha >= 0.5 for BGRA textures).
+  RenderResult Render(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world) const;
+
+  // The pixel (with distortion) of a point in camera coordinates (z > 0 expected).
+  Eigen::Vector2d ProjectPoint(const Eigen::Vector3d& point_in_camera) const;
+
+  const Camera& camera() const { return camera_; }
+
+ private:
+  Camera camera_;
+  cv::Mat rays_;  // CV_32FC2: normalised (x/z, y/z) of each pixel's ray
+  double x_min_ = 0, x_max_ = 0, y_min_ = 0, y_max_ = 0;  // ray bounds, with margin
+};
+
+}  // namespace dynvo

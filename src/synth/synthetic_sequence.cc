@@ -1,0 +1,142 @@
+#include "synth/synthetic_sequence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <memory>
+#include <random>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "dataset/tum_camera.h"
+#include "synth/tum_writer.h"
+
+namespace dynvo {
+
+Camera TumIntrinsics(const std::string& name, const std::string& key) {
+  if (name == "fr1") return TumCameraForSequence("freiburg1");
+  if (name == "fr2") return TumCameraForSequence("freiburg2");
+  if (name == "fr3") return TumCameraForSequence("freiburg3");
+  if (name == "ros") return TumCameraForSequence("");
+  throw InputError(key + " must be one of fr1, fr2, fr3, ros, got '" + name + "'");
+}
+
+SyntheticSequenceOptions::SyntheticSequenceOptions() : camera(TumIntrinsics("fr3", "")) {}
+
+void SyntheticSequenceOptions::Check() const {
+  if (frames < 1) throw InputError("synth.frames must be >= 1, got " + std::to_string(frames));
+  if (!(fps > 0 && fps <= 60)) throw InputError("synth.fps must be in (0, 60], got " + std::to_string(fps));
+  camera.Check("synth.camera");
+  if (camera.HasDistortion())
+    throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");
+  if (camera.width < 16 || camera.height < 16)
+    throw InputError("synth.camera: width and height must be >= 16");
+  if (motion_blur_samples < 3 || motion_blur_samples % 2 == 0)
+    throw InputError("synth.motion_blur_samples must be odd and >= 3, got " + std::to_string(motion_blur_samples));
+  if (!(exposure_s > 0 && exposure_s < 1.0 / fps))
+    throw InputError("synth.exposure_s must be in (0, 1/fps), got " + std::to_string(exposure_s));
+  if (!(start_stamp >= 0 && start_stamp < 1e10))
+    throw InputError("synth.start_stamp must be in [0, 1e10), got " + std::to_string(start_stamp));
+  room.Check();
+  noise.Check();
+}
+
+SyntheticWorld::SyntheticWorld(const SyntheticSequenceOptions& options)
+    : options_((options.Check(), options)),
+      static_quads_(MakeRoomScene(options.room, options.seed)),
+      people_(MakeScenarioPeople(options.scenario, options.seed * 1009u + 17u)),
+      renderer_(options.camera) {
+  std::mt19937 rng(options.seed * 7919u + 3u);
+  // Depth lags RGB by a few milliseconds, little enough that every depth frame stays
+  // nearest to its own RGB frame (TUM association picks the nearest pairs).
+  std::uniform_real_distribution<double> jitter(-0.002, 0.002), lag(0.002, std::min(0.012, 0.25 / options.fps));
+  for (int i = 0; i < options.frames; ++i) {
+    const double rgb = RoundStamp(options.start_stamp + i / options.fps + (i > 0 ? jitter(rng) : 0.0));
+    rgb_stamps_.push_back(rgb);
+    depth_stamps_.push_back(RoundStamp(rgb + lag(rng)));
+  }
+}
+
+Pose SyntheticWorld::WorldFromCamera(double seconds) const {
+  return CameraPathPose(options_.camera_path, seconds);
+}
+
+std::vector<TexturedQuad> SyntheticWorld::QuadsAt(double seconds) const {
+  std::vector<TexturedQuad> quads = static_quads_;
+  for (const MovingPerson& person : people_) {
+    const std::vector<TexturedQuad> parts = PersonQuadsAt(person, seconds);
+    quads.insert(quads.end(), parts.begin(), parts.end());
+  }
+  return quads;
+}
+
+SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
+  SyntheticFrame frame;
+  frame.rgb_stamp = RgbStamp(index);
+  frame.depth_stamp = DepthStamp(index);
+  const double t = frame.rgb_stamp - options_.start_stamp;
+  frame.world_from_camera = WorldFromCamera(t);
+  frame.clean = renderer_.Render(QuadsAt(t), frame.world_from_camera.inverse());
+  frame.mask = frame.clean.object_id > 0;
+  if (options_.motion_blur) {
+    const int n = options_.motion_blur_samples;
+    cv::Mat sum;
+    frame.clean.bgr.convertTo(sum, CV_32FC3);
+    for (int k = 0; k < n; ++k) {
+      if (k == n / 2) continue;  // the centre sample is the clean render
+      const double ts = t + options_.exposure_s * (double(k) / (n - 1) - 0.5);
+      const RenderResult sub = renderer_.Render(QuadsAt(ts), WorldFromCamera(ts).inverse());
+      cv::accumulate(sub.bgr, sum);
+      frame.mask |= sub.object_id > 0;  // every pixel a moving object touched
+    }
+    sum.convertTo(frame.bgr, CV_8UC3, 1.0 / n);
+  } else {
+    frame.bgr = frame.clean.bgr.clone();
+  }
+  const std::uint32_t frame_seed = options_.seed * 2654435761u + static_cast<std::uint32_t>(index) * 40503u;
+  ApplyRgbNoise(options_.noise, frame_seed, &frame.bgr);
+  frame.depth16 = MakeSensorDepth(options_.noise, frame_seed + 1u, frame.clean.depth);
+  return frame;
+}
+
+Trajectory SyntheticWorld::Groundtruth() const {
+  Trajectory gt;
+  const double first = rgb_stamps_.front() - 0.5, last = rgb_stamps_.back() + 0.5;
+  for (int k = 0;; ++k) {
+    const double stamp = RoundStamp(first + 0.0043 + 0.01 * k);
+    if (stamp > last) break;
+    gt.push_back({stamp, WorldFromCamera(stamp - options_.start_stamp)});
+  }
+  return gt;
+}
+
+SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder) {
+  const SyntheticWorld world(options);
+  TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) +
+                               ", camera path " + CameraPathPresetName(options.camera_path) +
+                               ", seed " + std::to_string(options.seed));
+  SyntheticSequenceSummary summary;
+  double ratio_sum = 0;
+  // PNG encoding of frame i overlaps the rendering of frame i + 1 (one frame in flight, so
+  // the writer is never used by two threads at once); the output does not depend on timing.
+  std::future<void> pending;
+  for (int i = 0; i < world.size(); ++i) {
+    auto frame = std::make_shared<SyntheticFrame>(world.RenderFrame(i));
+    const int dynamic = cv::countNonZero(frame->mask);
+    ratio_sum += double(dynamic) / frame->mask.total();
+    if (dynamic > 0) ++summary.frames_with_people;
+    if (pending.valid()) pending.get();  // rethrows a write error
+    pending = std::async(std::launch::async, [&writer, frame] {
+      writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16, frame->mask);
+    });
+  }
+  if (pending.valid()) pending.get();
+  writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
+  summary.frames = world.size();
+  summary.mean_dynamic_ratio = ratio_sum / world.size();
+  return summary;
+}
+
+}  // namespace dynvo

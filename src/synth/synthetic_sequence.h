@@ -1,0 +1,97 @@
+#pragma once
+// Synthetic dynamic RGB-D sequences with ground truth: a textured room, a camera path
+// preset, moving people, sensor noise; camera poses and per-frame dynamic masks are exact.
+// Deterministic from the seed.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/camera.h"
+#include "dataset/trajectory_io.h"
+#include "synth/camera_path.h"
+#include "synth/moving_object.h"
+#include "synth/renderer.h"
+#include "synth/scene.h"
+#include "synth/sensor_noise.h"
+
+namespace dynvo {
+
+// TUM's published pinhole intrinsics: "fr1", "fr2", "fr3" (with distortion for fr1/fr2),
+// or "ros" (the 525 default); 640x480. Throws InputError naming `key` otherwise.
+Camera TumIntrinsics(const std::string& name, const std::string& key);
+
+struct SyntheticSequenceOptions {
+  Scenario scenario = Scenario::kWalkingAcross;            // moving objects
+  CameraPathPreset camera_path = CameraPathPreset::kXyz;   // camera motion
+  int frames = 300;                 // RGB-D frames to generate
+  double fps = 30.0;                // frames per second, in (0, 60]
+  Camera camera;                    // intrinsics, no distortion (default: TUM fr3, 640x480)
+  std::uint32_t seed = 1;           // everything random derives from it
+  bool motion_blur = false;         // average sub-frames over the exposure
+  int motion_blur_samples = 5;      // sub-frames per blurred frame (odd, >= 3)
+  double exposure_s = 0.02;         // seconds the shutter is open (motion blur)
+  double start_stamp = 1700000000.0;  // seconds, stamp of the first frame
+  RoomOptions room;                 // the static scene
+  SensorNoiseOptions noise;         // sensor effects
+
+  SyntheticSequenceOptions();
+  // Throws InputError naming the key ("synth.frames must be >= 1, got 0").
+  void Check() const;
+};
+
+// One generated frame.
+struct SyntheticFrame {
+  double rgb_stamp = 0;    // seconds
+  double depth_stamp = 0;  // seconds, a few milliseconds after rgb_stamp
+  Pose world_from_camera;  // exact pose at rgb_stamp
+  cv::Mat bgr;             // CV_8UC3 with sensor effects
+  cv::Mat depth16;         // CV_16U, depth_factor units, 0 = no reading
+  cv::Mat mask;            // CV_8U, 255 where a moving object is seen
+  RenderResult clean;      // the noise-free render at rgb_stamp (depth in metres, ids)
+};
+
+// The scene, people and camera path of one sequence; renders any frame on demand.
+class SyntheticWorld {
+ public:
+  // Builds the room and people (textures included); throws InputError on bad options.
+  explicit SyntheticWorld(const SyntheticSequenceOptions& options);
+
+  int size() const { return options_.frames; }
+  double RgbStamp(int index) const { return rgb_stamps_.at(static_cast<size_t>(index)); }
+  double DepthStamp(int index) const { return depth_stamps_.at(static_cast<size_t>(index)); }
+  // Exact camera pose at `seconds` after start_stamp.
+  Pose WorldFromCamera(double seconds) const;
+  // Static scene quads followed by the moving people's quads at `seconds`.
+  std::vector<TexturedQuad> QuadsAt(double seconds) const;
+  const std::vector<MovingPerson>& people() const { return people_; }
+  const Renderer& renderer() const { return renderer_; }
+
+  // Frame `index` with sensor effects; the same for the same options.
+  SyntheticFrame RenderFrame(int index) const;
+  // Ground truth at 100 Hz from 0.5 s before the first to 0.5 s after the last frame,
+  // stamps offset from the frame stamps (as in TUM).
+  Trajectory Groundtruth() const;
+
+ private:
+  SyntheticSequenceOptions options_;
+  std::vector<TexturedQuad> static_quads_;
+  std::vector<MovingPerson> people_;
+  Renderer renderer_;
+  std::vector<double> rgb_stamps_, depth_stamps_;
+};
+
+struct SyntheticSequenceSummary {
+  int frames = 0;
+  double mean_dynamic_ratio = 0;  // mean fraction of mask pixels per frame
+  int frames_with_people = 0;     // frames whose mask is not empty
+};
+
+// Renders every frame and writes the TUM layout (with masks/ and camera.json) into a
+// folder prepared by PrepareOutputFolder.
+SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options,
+                                                const std::string& folder);
+
+}  // namespace dynvo
