@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
       ->required();
   run->add_option("--config", request.config_path, "JSON config (default: built-in defaults = paper)");
   run->add_option("--out", request.out_dir, "output folder (created when missing)")->required();
-  run->add_option("--set", request.overrides, "override one config key: key=value (repeatable)");
+  run->add_option("--set", request.overrides, "override one config key: key=value (repeatable)")
+      ->allow_extra_args(false);
   run->add_flag("--force", request.force, "overwrite the outputs of an earlier run in --out");
   run->add_flag("--quiet", request.quiet, "no progress lines on stderr");
   run->add_option("--debug-frames", debug_frames,

@@ -1,5 +1,7 @@
 #include "odometry/sequence_runner.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -191,6 +193,9 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                     {"end_to_end_fps", wall_s > 0 ? done / wall_s : 0.0},
                     {"processing_fps", processing_total > 0 ? 1000.0 * done / processing_total : 0.0},
                     {"preload", config.run.preload}};
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  report["memory"] = {{"peak_rss_mb", usage.ru_maxrss / 1024.0}};  // ru_maxrss is in KiB on Linux
   if (evaluate_masks && done > 0) {
     double iou_sum = 0;
     for (double v : tally.mask_iou) iou_sum += v;

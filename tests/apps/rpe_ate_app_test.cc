@@ -1,8 +1,6 @@
 // Runs the `rpe` and `ate` executables on synthetic files with known answers, and on the
 // reference trajectories of ../shared when present.
 
-#include <sys/wait.h>
-
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -13,17 +11,12 @@
 
 #include "dataset/trajectory_io.h"
 #include "eval/synthetic_trajectory.h"
+#include "support/run_tool.h"
 #include "support/shared_data.h"
 #include "support/temp_dir.h"
 
 namespace dynvo {
 namespace {
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
 
 std::string Slurp(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -38,21 +31,8 @@ int CountLines(const std::string& text) {
   return lines;
 }
 
-// Runs bin/<program> <args> (args already shell-quoted where needed).
-Outcome RunTool(const test::TempDir& dir, const std::string& program, const std::string& args) {
-  const char* bin = std::getenv("DYNVO_BIN_DIR");
-  if (!bin || !*bin) ADD_FAILURE() << "DYNVO_BIN_DIR is not set (ctest sets it)";
-  const std::string exe = std::string(bin ? bin : ".") + "/" + program;
-  const auto out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
-  const std::string command =
-      "'" + exe + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  Outcome o;
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  o.out = Slurp(out);
-  o.err = Slurp(err);
-  return o;
-}
+using Outcome = test::ToolOutcome;
+using test::RunTool;
 
 // Groundtruth: straight line at 0.4 m/s, 32 Hz, 10 s. Estimate: the same plus 0.05 m/s drift
 // in z, so the per-second RPE is 0.05 m for every pair (288 pairs).

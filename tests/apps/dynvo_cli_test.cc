@@ -1,0 +1,115 @@
+// Runs the dynvo-cli executable: every bad input gets one clear line on stderr and a
+// non-zero exit; a good run writes its three outputs.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/run_tool.h"
+#include "support/temp_dir.h"
+#include "synth/synthetic_sequence.h"
+#include "synth/tum_writer.h"
+
+namespace dynvo {
+namespace {
+
+using test::RunTool;
+using test::ToolOutcome;
+
+std::string Quote(const std::string& s) { return "'" + s + "'"; }
+
+std::string Config(const std::string& name) { return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name; }
+
+// A short, small generated sequence: enough frames to run, not to measure accuracy.
+std::string MakeSequence(const test::TempDir& dir) {
+  SyntheticSequenceOptions options;
+  options.frames = 8;
+  options.camera.width = 320;
+  options.camera.height = 240;
+  options.camera.fx = options.camera.fy = 270;
+  options.camera.cx = 160;
+  options.camera.cy = 120;
+  const std::string folder = (dir.path() / "seq").string();
+  PrepareOutputFolder(folder, /*force=*/false);
+  WriteSyntheticSequence(options, folder);
+  return folder;
+}
+
+// One line on stderr, starting with the program's name, containing `needle`; exit code 1.
+void ExpectOneLineError(const ToolOutcome& o, const std::string& needle) {
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_EQ(o.err.rfind("dynvo-cli: error: ", 0), 0u) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_NE(o.err.find(needle), std::string::npos) << "expected '" << needle << "' in: " << o.err;
+}
+
+TEST(DynvoCli, RunsAndWritesOutputs) {
+  test::TempDir dir;
+  const std::string seq = MakeSequence(dir);
+  const std::string out = (dir.path() / "out").string();
+  const ToolOutcome o = RunTool(dir, "dynvo-cli",
+                                "run --quiet --dataset " + Quote(seq) + " --config " +
+                                    Quote(Config("paper.json")) + " --out " + Quote(out));
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(o.err.empty()) << "--quiet prints nothing: " << o.err;
+  for (const char* f : {"trajectory.txt", "timing.csv", "run.json"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  std::ifstream report(out + "/run.json");
+  const nlohmann::json j = nlohmann::json::parse(report);
+  EXPECT_EQ(j["counts"]["frames"], 8);
+  EXPECT_EQ(j["config"]["dynamic_mask"]["erode_iterations"], 2) << "config echoed as used";
+
+  // Same folder again: refused without --force, accepted with it.
+  const std::string again = "run --quiet --dataset " + Quote(seq) + " --out " + Quote(out);
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", again), "--force");
+  EXPECT_EQ(RunTool(dir, "dynvo-cli", again + " --force").exit_code, 0);
+}
+
+TEST(DynvoCli, BadInputsGetOneClearError) {
+  test::TempDir dir;
+  const std::string seq = MakeSequence(dir);
+  const std::string out = " --out " + Quote((dir.path() / "o").string());
+  const std::string run = "run --quiet --dataset " + Quote(seq) + out;
+
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", "run --dataset /no/such/folder" + out), "/no/such/folder");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set dynamic_mask.erode_iterations=-1"),
+                     "dynamic_mask.erode_iterations");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set dynamic_mask.nonsense=1"),
+                     "unknown key 'dynamic_mask.nonsense'");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"),
+                     "features.num_features");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 99"), "beyond the last frame");
+
+  const std::string bad_config = dir.Write("bad.json", R"({"features": {"num_featurs": 10}})");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --config " + Quote(bad_config)),
+                     "bad.json: unknown key 'features.num_featurs'");
+  const std::string broken_config = dir.Write("broken.json", "{");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --config " + Quote(broken_config)),
+                     "broken.json: not valid JSON");
+
+  // A list line that is not "timestamp filename".
+  std::filesystem::copy(seq, dir.path() / "bad_seq", std::filesystem::copy_options::recursive);
+  std::ofstream(dir.path() / "bad_seq" / "rgb.txt", std::ios::app) << "12.5\n";
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", "run --dataset " + Quote((dir.path() / "bad_seq").string()) + out),
+                     "rgb.txt:");
+
+  // Usage errors come from the argument parser: non-zero exit, no crash.
+  EXPECT_NE(RunTool(dir, "dynvo-cli", "run --dataset " + Quote(seq)).exit_code, 0);
+  EXPECT_NE(RunTool(dir, "dynvo-cli", "").exit_code, 0);
+}
+
+TEST(DynvoCli, ConfigKeysListsEveryKey) {
+  test::TempDir dir;
+  const ToolOutcome o = RunTool(dir, "dynvo-cli", "config-keys --markdown");
+  ASSERT_EQ(o.exit_code, 0);
+  for (const char* key : {"dynamic_mask.erode_kernel_size", "dynamic_mask.backward", "features.num_features",
+                          "pose.huber_delta_px", "local_ba.window_keyframes", "dataset.depth_factor"})
+    EXPECT_NE(o.out.find(std::string("`") + key + "`"), std::string::npos) << key;
+}
+
+}  // namespace
+}  // namespace dynvo

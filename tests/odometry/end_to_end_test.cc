@@ -1,0 +1,138 @@
+// The whole odometry on a generated dynamic sequence whose truth is known: two people cross
+// the view of a camera moving along x/y/z. Measured when written (120 frames, 640x480, seed
+// 1): per-second RPE 0.0048 m/s in paper mode, 0.0213 m/s in the baseline. The bounds leave
+// about 2x headroom on each side.
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "dataset/trajectory_io.h"
+#include "eval/rpe.h"
+#include "odometry/sequence_runner.h"
+#include "support/temp_dir.h"
+#include "synth/synthetic_sequence.h"
+#include "synth/tum_writer.h"
+
+namespace dynvo {
+namespace {
+
+std::string ConfigPath(const std::string& name) {
+  return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class EndToEnd : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    SyntheticSequenceOptions options;
+    options.scenario = Scenario::kTwoCrossing;
+    options.camera_path = CameraPathPreset::kXyz;
+    options.frames = 120;
+    options.seed = 1;
+    sequence_ = (dir_->path() / "sequence").string();
+    PrepareOutputFolder(sequence_, /*force=*/false);
+    WriteSyntheticSequence(options, sequence_);
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+
+  // Runs dynvo-cli's job with `config` into a fresh folder; returns that folder.
+  static std::string Run(const std::string& config, const std::string& name) {
+    RunRequest request;
+    request.dataset = sequence_;
+    request.config_path = ConfigPath(config);
+    request.out_dir = (dir_->path() / name).string();
+    request.quiet = true;
+    RunOdometry(request);
+    return request.out_dir;
+  }
+
+  static double PerSecondRpe(const std::string& out_dir) {
+    const Trajectory truth = ReadTrajectory(sequence_ + "/groundtruth.txt");
+    const Trajectory estimate = ReadTrajectory(out_dir + "/trajectory.txt");
+    return ComputeRpe(truth, estimate, RpeOptions{}).translation_m.rmse;
+  }
+
+  static test::TempDir* dir_;
+  static std::string sequence_;
+};
+
+test::TempDir* EndToEnd::dir_ = nullptr;
+std::string EndToEnd::sequence_;
+
+TEST_F(EndToEnd, PaperModeIsAccurateAndTheBaselineIsNot) {
+  const std::string paper = Run("paper.json", "paper");
+  const std::string baseline = Run("baseline.json", "baseline");
+  const double paper_rpe = PerSecondRpe(paper);
+  const double baseline_rpe = PerSecondRpe(baseline);
+  EXPECT_LT(paper_rpe, 0.010) << "paper mode per-second RPE (m/s)";
+  EXPECT_GT(baseline_rpe, 2.0 * paper_rpe) << "baseline " << baseline_rpe << " vs paper " << paper_rpe;
+
+  // One pose and one timing row per frame; mask quality reported against the truth masks.
+  EXPECT_EQ(ReadTrajectory(paper + "/trajectory.txt").size(), 120u);
+  std::ifstream timing(paper + "/timing.csv");
+  int rows = 0;
+  for (std::string line; std::getline(timing, line);) ++rows;
+  EXPECT_EQ(rows, 121);
+  const nlohmann::json report = nlohmann::json::parse(ReadFile(paper + "/run.json"));
+  EXPECT_EQ(report["status"], "completed");
+  ASSERT_TRUE(report["mask_quality"].is_object());
+  EXPECT_GT(report["mask_quality"]["recall"].get<double>(), 0.1);
+  EXPECT_GT(report["mask_quality"]["precision"].get<double>(), 0.3);
+  EXPECT_TRUE(nlohmann::json::parse(ReadFile(baseline + "/run.json"))["mask_quality"].is_null());
+}
+
+TEST_F(EndToEnd, SameInputGivesTheSameTrajectory) {
+  const std::string first = Run("paper.json", "first");
+  const std::string second = Run("paper.json", "second");
+  const std::string a = ReadFile(first + "/trajectory.txt");
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, ReadFile(second + "/trajectory.txt"));
+}
+
+TEST_F(EndToEnd, RefusesToOverwriteWithoutForce) {
+  const std::string out = Run("baseline.json", "twice");
+  RunRequest again;
+  again.dataset = sequence_;
+  again.config_path = ConfigPath("baseline.json");
+  again.out_dir = out;
+  again.quiet = true;
+  try {
+    RunOdometry(again);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--force"), std::string::npos) << e.what();
+  }
+  again.force = true;
+  EXPECT_NO_THROW(RunOdometry(again));
+}
+
+TEST_F(EndToEnd, DebugFramesWriteThePanels) {
+  RunRequest request;
+  request.dataset = sequence_;
+  request.config_path = ConfigPath("paper.json");
+  request.out_dir = (dir_->path() / "debug_run").string();
+  request.quiet = true;
+  request.debug_frames = {40};
+  RunOdometry(request);
+  for (const char* panel : {"compensated", "difference", "forward_mask", "backward_mask", "fused_mask",
+                            "features", "panels"})
+    EXPECT_TRUE(std::filesystem::exists(request.out_dir + "/debug/frame_000040_" + panel + ".png"))
+        << panel;
+}
+
+}  // namespace
+}  // namespace dynvo
