@@ -1,36 +1,18 @@
 // ate: absolute trajectory error of an estimated TUM trajectory against groundtruth, with the
 // semantics of the TUM benchmark's evaluate_ate.py.
 
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "apps/app_files.h"
 #include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "eval/ate.h"
 #include "eval/metrics_report.h"
 
 namespace {
-
-// Writes `content` to `path`; refuses to replace an existing file unless `force`.
-void WriteOutput(const std::string& path, const std::string& content, bool force) {
-  if (!force && std::filesystem::exists(path))
-    dynvo::ThrowFileError(path, 0, "already exists (use --force to overwrite)");
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) dynvo::ThrowFileError(path, 0, "cannot write file");
-  out << content;
-  if (!out) dynvo::ThrowFileError(path, 0, "write failed");
-}
-
-// ReadTrajectory, and an error naming the file when it holds no pose.
-dynvo::Trajectory ReadNonEmpty(const std::string& path) {
-  dynvo::Trajectory trajectory = dynvo::ReadTrajectory(path);
-  if (trajectory.empty()) dynvo::ThrowFileError(path, 0, "no poses in file");
-  return trajectory;
-}
 
 int Run(int argc, char** argv) {
   CLI::App app{
@@ -69,12 +51,12 @@ int Run(int argc, char** argv) {
   }
 
   options.Check();
-  const dynvo::Trajectory gt = ReadNonEmpty(gt_path);
-  const dynvo::Trajectory est = ReadNonEmpty(est_path);
+  const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
+  const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
   const dynvo::AteResult result = dynvo::ComputeAte(gt, est, options);
-  if (!pairs_out.empty()) WriteOutput(pairs_out, dynvo::AtePairsCsv(result), force);
+  if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::AtePairsCsv(result), force);
   if (!aligned_out.empty())
-    WriteOutput(aligned_out,
+    dynvo::WriteOutputFile(aligned_out,
                 dynvo::FormatTrajectory(
                     dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
                 force);

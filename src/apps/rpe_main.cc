@@ -1,36 +1,18 @@
 // rpe: relative pose error of an estimated TUM trajectory against groundtruth, with the
 // semantics of the TUM benchmark's evaluate_rpe.py.
 
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "apps/app_files.h"
 #include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "eval/metrics_report.h"
 #include "eval/rpe.h"
 
 namespace {
-
-// Writes `content` to `path`; refuses to replace an existing file unless `force`.
-void WriteOutput(const std::string& path, const std::string& content, bool force) {
-  if (!force && std::filesystem::exists(path))
-    dynvo::ThrowFileError(path, 0, "already exists (use --force to overwrite)");
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) dynvo::ThrowFileError(path, 0, "cannot write file");
-  out << content;
-  if (!out) dynvo::ThrowFileError(path, 0, "write failed");
-}
-
-// ReadTrajectory, and an error naming the file when it holds no pose.
-dynvo::Trajectory ReadNonEmpty(const std::string& path) {
-  dynvo::Trajectory trajectory = dynvo::ReadTrajectory(path);
-  if (trajectory.empty()) dynvo::ThrowFileError(path, 0, "no poses in file");
-  return trajectory;
-}
 
 int Run(int argc, char** argv) {
   CLI::App app{
@@ -84,10 +66,10 @@ int Run(int argc, char** argv) {
   options.closest =
       closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
   options.Check();
-  const dynvo::Trajectory gt = ReadNonEmpty(gt_path);
-  const dynvo::Trajectory est = ReadNonEmpty(est_path);
+  const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
+  const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
   const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
-  if (!pairs_out.empty()) WriteOutput(pairs_out, dynvo::RpePairsCsv(result), force);
+  if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
   if (json) {
     nlohmann::json j = dynvo::RpeJson(result, options);
     j["groundtruth"] = gt_path;

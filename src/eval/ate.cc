@@ -1,60 +1,39 @@
 #include "eval/ate.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 #include "eval/rigid_alignment.h"
 #include "eval/stamp_association.h"
+#include "eval/trajectory_stamps.h"
 
 namespace dynvo {
-namespace {
-
-std::string Number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-std::vector<double> Stamps(const Trajectory& trajectory, const char* name) {
-  std::vector<double> stamps;
-  stamps.reserve(trajectory.size());
-  for (const StampedPose& p : trajectory) {
-    if (!stamps.empty() && !(p.stamp > stamps.back()))
-      throw InputError(std::string(name) + " trajectory: stamps must strictly increase, got " +
-                       Number(p.stamp) + " after " + Number(stamps.back()));
-    stamps.push_back(p.stamp);
-  }
-  return stamps;
-}
-
-}  // namespace
 
 void AteOptions::Check() const {
-  if (!std::isfinite(offset)) throw InputError("ate.offset must be finite, got " + Number(offset));
+  if (!std::isfinite(offset)) throw InputError("ate.offset must be finite, got " + FormatNumber(offset));
   if (!std::isfinite(scale) || !(scale > 0.0))
-    throw InputError("ate.scale must be a finite number > 0, got " + Number(scale));
+    throw InputError("ate.scale must be a finite number > 0, got " + FormatNumber(scale));
   if (!std::isfinite(max_difference) || !(max_difference > 0.0))
     throw InputError("ate.max_difference must be a finite number > 0, got " +
-                     Number(max_difference));
+                     FormatNumber(max_difference));
 }
 
 std::string AteVariant(const AteOptions& options) {
   return "Horn alignment (rotation + translation, no scale), max difference " +
-         Number(options.max_difference) + " s, offset " + Number(options.offset) +
-         " s, scale " + Number(options.scale);
+         FormatNumber(options.max_difference) + " s, offset " + FormatNumber(options.offset) +
+         " s, scale " + FormatNumber(options.scale);
 }
 
 AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
   options.Check();
-  const std::vector<double> stamps_gt = Stamps(gt, "groundtruth");
-  const std::vector<double> stamps_est = Stamps(est, "estimated");
+  const std::vector<double> stamps_gt = IncreasingStamps(gt, "groundtruth");
+  const std::vector<double> stamps_est = IncreasingStamps(est, "estimated");
   const std::vector<StampMatch> matches =
       AssociateStamps(stamps_gt, stamps_est, options.offset, options.max_difference);
   if (matches.size() < 2)
     throw InputError("only " + std::to_string(matches.size()) +
                      " estimated poses have a groundtruth stamp within " +
-                     Number(options.max_difference) + " s (offset " + Number(options.offset) +
+                     FormatNumber(options.max_difference) + " s (offset " + FormatNumber(options.offset) +
                      " s), need at least 2: do the files belong to the same sequence?");
 
   std::vector<Eigen::Vector3d> positions_gt, positions_est;

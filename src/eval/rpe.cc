@@ -1,34 +1,20 @@
 #include "eval/rpe.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
+#include "eval/trajectory_stamps.h"
 
 namespace dynvo {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string Number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 std::vector<double> Stamps(const Trajectory& trajectory, const char* name) {
   if (trajectory.size() < 2)
     throw InputError(std::string(name) + " trajectory has " + std::to_string(trajectory.size()) +
                      " poses, RPE needs at least 2");
-  std::vector<double> stamps;
-  stamps.reserve(trajectory.size());
-  for (const StampedPose& p : trajectory) {
-    if (!stamps.empty() && !(p.stamp > stamps.back()))
-      throw InputError(std::string(name) + " trajectory: stamps must strictly increase, got " +
-                       Number(p.stamp) + " after " + Number(stamps.back()));
-    stamps.push_back(p.stamp);
-  }
-  return stamps;
+  return IncreasingStamps(trajectory, name);
 }
 
 // The script's index_est: the value along the estimated trajectory that delta counts.
@@ -58,10 +44,10 @@ std::vector<double> DeltaIndex(const Trajectory& est, const std::vector<double>&
 
 void RpeOptions::Check() const {
   if (!std::isfinite(delta) || !(delta > 0.0))
-    throw InputError("rpe.delta must be a finite number > 0, got " + Number(delta));
-  if (!std::isfinite(offset)) throw InputError("rpe.offset must be finite, got " + Number(offset));
+    throw InputError("rpe.delta must be a finite number > 0, got " + FormatNumber(delta));
+  if (!std::isfinite(offset)) throw InputError("rpe.offset must be finite, got " + FormatNumber(offset));
   if (!std::isfinite(scale) || !(scale > 0.0))
-    throw InputError("rpe.scale must be a finite number > 0, got " + Number(scale));
+    throw InputError("rpe.scale must be a finite number > 0, got " + FormatNumber(scale));
 }
 
 std::string DeltaUnitName(DeltaUnit unit) {
@@ -87,7 +73,7 @@ std::string RpeVariant(const RpeOptions& options) {
   if (!options.fixed_delta)
     return "all pairs: every ordered pose pair (global consistency, not drift per second), " +
            lookup;
-  const std::string delta = Number(options.delta);
+  const std::string delta = FormatNumber(options.delta);
   std::string unit_words = DeltaUnitName(options.unit);
   if (options.unit == DeltaUnit::kFrames) unit_words = options.delta == 1.0 ? "frame" : "frames";
   std::string name = "per " + delta + " " + unit_words;
@@ -174,13 +160,13 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
   }
   if (candidates < 2)
     throw InputError("the estimated trajectory gives " + std::to_string(candidates) +
-                     " pose pairs at fixed delta " + Number(options.delta) + " " +
+                     " pose pairs at fixed delta " + FormatNumber(options.delta) + " " +
                      DeltaUnitName(options.unit) +
                      ", need at least 2: is it longer than the delta?");
   if (result.pairs.size() < 2)
     throw InputError("only " + std::to_string(result.pairs.size()) + " of " +
                      std::to_string(candidates) + " pose pairs have groundtruth within " +
-                     Number(max_time_difference) +
+                     FormatNumber(max_time_difference) +
                      " s (twice the median groundtruth interval), need at least 2");
   result.translation_m = Summarize(trans_errors);
   result.rotation_deg = Summarize(rot_errors_deg);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "dataset/text_lines.h"
 #include "dataset/trajectory_io.h"
 #include "eval/synthetic_trajectory.h"
 #include "support/run_tool.h"
@@ -17,13 +18,6 @@
 
 namespace dynvo {
 namespace {
-
-std::string Slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 int CountLines(const std::string& text) {
   int lines = 0;
@@ -82,7 +76,7 @@ TEST(RpeApp, PairsCsvAndNoSilentOverwrite) {
   const DriftFiles f = WriteDriftFiles(dir);
   const std::string csv = (dir.path() / "pairs.csv").string();
   ASSERT_EQ(RunTool(dir, "rpe", f.gt + " " + f.est + " --pairs-out " + csv).exit_code, 0);
-  const std::string text = Slurp(csv);
+  const std::string text = ReadTextFile(csv);
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "stamp_est_0,stamp_est_1,stamp_gt_0,stamp_gt_1,trans_error_m,rot_error_deg");
   EXPECT_EQ(CountLines(text), 289);

@@ -5,11 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "dataset/text_lines.h"
 #include "dataset/trajectory_io.h"
 #include "eval/rpe.h"
 #include "odometry/sequence_runner.h"
@@ -22,13 +22,6 @@ namespace {
 
 std::string ConfigPath(const std::string& name) {
   return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name;
-}
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 class EndToEnd : public ::testing::Test {
@@ -87,20 +80,20 @@ TEST_F(EndToEnd, PaperModeIsAccurateAndTheBaselineIsNot) {
   int rows = 0;
   for (std::string line; std::getline(timing, line);) ++rows;
   EXPECT_EQ(rows, 121);
-  const nlohmann::json report = nlohmann::json::parse(ReadFile(paper + "/run.json"));
+  const nlohmann::json report = nlohmann::json::parse(ReadTextFile(paper + "/run.json"));
   EXPECT_EQ(report["status"], "completed");
   ASSERT_TRUE(report["mask_quality"].is_object());
   EXPECT_GT(report["mask_quality"]["recall"].get<double>(), 0.1);
   EXPECT_GT(report["mask_quality"]["precision"].get<double>(), 0.3);
-  EXPECT_TRUE(nlohmann::json::parse(ReadFile(baseline + "/run.json"))["mask_quality"].is_null());
+  EXPECT_TRUE(nlohmann::json::parse(ReadTextFile(baseline + "/run.json"))["mask_quality"].is_null());
 }
 
 TEST_F(EndToEnd, SameInputGivesTheSameTrajectory) {
   const std::string first = Run("paper.json", "first");
   const std::string second = Run("paper.json", "second");
-  const std::string a = ReadFile(first + "/trajectory.txt");
+  const std::string a = ReadTextFile(first + "/trajectory.txt");
   EXPECT_FALSE(a.empty());
-  EXPECT_EQ(a, ReadFile(second + "/trajectory.txt"));
+  EXPECT_EQ(a, ReadTextFile(second + "/trajectory.txt"));
 }
 
 TEST_F(EndToEnd, RefusesToOverwriteWithoutForce) {

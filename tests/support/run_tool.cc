@@ -3,23 +3,12 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "dataset/text_lines.h"
+
 namespace dynvo::test {
-namespace {
-
-std::string Slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
-
 ToolOutcome RunTool(const TempDir& dir, const std::string& program, const std::string& args) {
   const char* bin = std::getenv("DYNVO_BIN_DIR");
   if (!bin || !*bin) ADD_FAILURE() << "DYNVO_BIN_DIR is not set (ctest sets it)";
@@ -30,8 +19,8 @@ ToolOutcome RunTool(const TempDir& dir, const std::string& program, const std::s
   const int status = std::system(command.c_str());
   ToolOutcome o;
   o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  o.out = Slurp(out);
-  o.err = Slurp(err);
+  o.out = ReadTextFile(out);
+  o.err = ReadTextFile(err);
   return o;
 }
 

@@ -1,0 +1,25 @@
+#include "apps/app_files.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+void WriteOutputFile(const std::string& path, const std::string& content, bool force) {
+  if (!force && std::filesystem::exists(path))
+    ThrowFileError(path, 0, "already exists (use --force to overwrite)");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) ThrowFileError(path, 0, "cannot write file");
+  out << content;
+  if (!out) ThrowFileError(path, 0, "write failed");
+}
+
+Trajectory ReadNonEmptyTrajectory(const std::string& path) {
+  Trajectory trajectory = ReadTrajectory(path);
+  if (trajectory.empty()) ThrowFileError(path, 0, "no poses in file");
+  return trajectory;
+}
+
+}  // namespace dynvo
