@@ -9,17 +9,10 @@
 
 namespace dynvo {
 
-int OtsuThreshold(const cv::Mat& image, const cv::Mat& valid) {
-  if (image.type() != CV_8UC1 || image.empty()) throw InputError("OtsuThreshold needs a non-empty CV_8UC1 image");
-  if (!valid.empty() && (valid.type() != CV_8UC1 || valid.size() != image.size()))
-    throw InputError("OtsuThreshold: valid mask must be CV_8UC1 of the image size");
-  cv::Mat histogram;
-  const int channels[] = {0};
-  const int bins[] = {256};
-  const float range[] = {0.0f, 256.0f};
-  const float* ranges[] = {range};
-  cv::calcHist(&image, 1, channels, valid, histogram, 1, bins, ranges);
+namespace {
 
+// Otsu's threshold of a 256-bin histogram (CV_32F counts, as cv::calcHist writes it).
+int OtsuOfHistogram(const cv::Mat& histogram) {
   double total = 0.0, weighted_total = 0.0;
   for (int i = 0; i < 256; ++i) {
     const double count = histogram.at<float>(i);
@@ -47,9 +40,43 @@ int OtsuThreshold(const cv::Mat& image, const cv::Mat& valid) {
   return best;
 }
 
+cv::Mat Histogram(const cv::Mat& image, const cv::Mat& mask) {
+  cv::Mat histogram;
+  const int channels[] = {0};
+  const int bins[] = {256};
+  const float range[] = {0.0f, 256.0f};
+  const float* ranges[] = {range};
+  cv::calcHist(&image, 1, channels, mask, histogram, 1, bins, ranges);
+  return histogram;
+}
+
+void CheckOtsuInput(const cv::Mat& image, const cv::Mat& valid) {
+  if (image.type() != CV_8UC1 || image.empty()) throw InputError("OtsuThreshold needs a non-empty CV_8UC1 image");
+  if (!valid.empty() && (valid.type() != CV_8UC1 || valid.size() != image.size()))
+    throw InputError("OtsuThreshold: valid mask must be CV_8UC1 of the image size");
+}
+
+}  // namespace
+
+int OtsuThreshold(const cv::Mat& image, const cv::Mat& valid) {
+  CheckOtsuInput(image, valid);
+  return OtsuOfHistogram(Histogram(image, valid));
+}
+
+int OtsuThresholdZeroOutsideValid(const cv::Mat& image, const cv::Mat& valid) {
+  CheckOtsuInput(image, valid);
+  // An unmasked histogram is about twice as fast as a masked one; the invalid pixels all sit in bin 0.
+  cv::Mat histogram = Histogram(image, cv::Mat());
+  if (!valid.empty()) {
+    const int invalid = static_cast<int>(valid.total()) - cv::countNonZero(valid);
+    histogram.at<float>(0) = std::max(0.0f, histogram.at<float>(0) - static_cast<float>(invalid));
+  }
+  return OtsuOfHistogram(histogram);
+}
+
 int DifferenceThreshold(const cv::Mat& difference, const cv::Mat& valid, const DynamicMaskOptions& options) {
   if (options.threshold == ThresholdMethod::kFixed) return options.fixed_threshold;
-  return std::max(OtsuThreshold(difference, valid), options.min_otsu_threshold);
+  return std::max(OtsuThresholdZeroOutsideValid(difference, valid), options.min_otsu_threshold);
 }
 
 void Binarize(const cv::Mat& image, int threshold, cv::Mat* binary) {

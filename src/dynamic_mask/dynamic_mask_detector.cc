@@ -176,6 +176,9 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
 
   PointTracks static_forward = forward_tracks, static_next = next_tracks;
   DirectionWork forward, backward;
+  // kReversePair: the reverse H of the last backward mask computed, and that mask in frame t.
+  Eigen::Matrix3d backward_previous_from_current = Eigen::Matrix3d::Identity();
+  cv::Mat backward_in_current;
   for (int round = 1; round <= options.rounds; ++round) {
     // Steps 1-3 forward: H from the (static) tracks, compensate t-1 onto t, difference, binarise, clean.
     const HomographyEstimate h_forward =
@@ -202,14 +205,20 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
       HomographyEstimate h_reverse = EstimateHomography(static_forward.current, static_forward.previous, homography);
       Eigen::Matrix3d previous_from_current = h_reverse.current_from_previous;
       if (!h_reverse.ok) previous_from_current = h_forward.current_from_previous.inverse();
-      const Eigen::Matrix3d previous_from_current_level = AtLevel(previous_from_current, level);
-      DetectDirection(current_level, previous_level, previous_from_current_level, level_options, &backward);
-      const Eigen::Matrix3d current_from_previous_level = previous_from_current_level.inverse();
-      cv::Matx33d m;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) m(r, c) = current_from_previous_level(r, c);
-      cv::warpPerspective(backward.binary, backward_mask, m, current_level.size(), cv::INTER_NEAREST,
-                          cv::BORDER_CONSTANT, cv::Scalar(0));
+      // Nearly the same reverse H as last round would give nearly the same mask: keep last round's.
+      if (round == 1 || CornerChange(previous_from_current, backward_previous_from_current, size) >=
+                            options.rounds_min_change_px) {
+        const Eigen::Matrix3d previous_from_current_level = AtLevel(previous_from_current, level);
+        DetectDirection(current_level, previous_level, previous_from_current_level, level_options, &backward);
+        const Eigen::Matrix3d current_from_previous_level = previous_from_current_level.inverse();
+        cv::Matx33d m;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) m(r, c) = current_from_previous_level(r, c);
+        cv::warpPerspective(backward.binary, backward_in_current, m, current_level.size(), cv::INTER_NEAREST,
+                            cv::BORDER_CONSTANT, cv::Scalar(0));
+        backward_previous_from_current = previous_from_current;
+      }
+      backward_mask = backward_in_current;
     } else if (use_next) {
       const HomographyEstimate h_next = EstimateHomography(static_next.previous, static_next.current, homography);
       if (h_next.ok) {

@@ -55,7 +55,7 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
     r->Bind(std::string("camera.") + dist_names[i], &c->camera.custom.distortion[i],
             "distortion coefficient (OpenCV order, source \"custom\")");
   // ego-motion
-  r->Bind("ego_motion.max_corners", &c->klt.max_corners, "KLT corners detected in frame t-1");
+  r->Bind("ego_motion.max_corners", &c->klt.max_corners, "KLT corners detected in frame t-1 (at most)");
   r->Bind("ego_motion.quality_level", &c->klt.quality_level, "corner quality relative to the best");
   r->Bind("ego_motion.min_distance_px", &c->klt.min_distance_px, "minimum spacing of KLT corners");
   r->Bind("ego_motion.window_size_px", &c->klt.window_size_px, "KLT window side");

@@ -1,6 +1,7 @@
 #include "odometry/odometry_pipeline.h"
 
 #include <chrono>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -14,6 +15,11 @@ using Clock = std::chrono::steady_clock;
 
 double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// True when both headers view the same pixels (one decoded frame handed to two calls).
+bool SameImage(const cv::Mat& a, const cv::Mat& b) {
+  return !a.empty() && a.data == b.data && a.size() == b.size() && a.step == b.step && a.type() == b.type();
 }
 
 cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split) {
@@ -49,14 +55,30 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   if (config_.dynamic_mask_enabled) {
     if (previous_gray_.empty()) {
       record.mask_note = "first frame: no previous frame to difference";
+      const auto t = Clock::now();
+      previous_pyramid_ = BuildTrackingPyramid(frame.gray, config_.klt);  // for the next call
+      record.times.dynamic_mask_ms = MsSince(t);
     } else {
       const auto t = Clock::now();
       DynamicMaskInput input;
       input.previous_gray = previous_gray_;
       input.current_gray = frame.gray;
-      if (NeedsNextFrame()) input.next_gray = next_gray;
+      input.previous_pyramid = previous_pyramid_;
+      // Frame t's pyramid was built last call when frame t came as the triplet's next frame.
+      input.current_pyramid = SameImage(next_gray_, frame.gray) ? next_pyramid_
+                                                                : BuildTrackingPyramid(frame.gray, config_.klt);
+      if (NeedsNextFrame() && !next_gray.empty()) {
+        input.next_gray = next_gray;
+        input.next_pyramid = BuildTrackingPyramid(next_gray, config_.klt);
+        // The last call's t -> t+1 tracks are this call's t-1 -> t ones.
+        if (SameImage(next_gray_, frame.gray)) input.previous_tracks = next_tracks_;
+      }
       DynamicMaskResult mask =
           DetectDynamicMask(input, config_.klt, config_.homography, config_.dynamic_mask);
+      previous_pyramid_ = input.current_pyramid;
+      next_gray_ = input.next_gray;
+      next_pyramid_ = input.next_pyramid;
+      next_tracks_ = std::move(mask.next_tracks);
       record.times.dynamic_mask_ms = MsSince(t);
       record.mask_ok = mask.ok;
       record.mask_note = mask.ok ? "" : mask.failure;

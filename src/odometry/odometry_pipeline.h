@@ -10,6 +10,7 @@
 
 #include "core/camera.h"
 #include "dataset/tum_dataset.h"
+#include "ego_motion/klt_tracker.h"
 #include "features/feature_extractor.h"
 #include "odometry/frame_record.h"
 #include "odometry/odometry_config.h"
@@ -51,6 +52,11 @@ class OdometryPipeline {
   FrameTracker tracker_;
   cv::Mat previous_gray_;
   cv::Mat last_mask_;
+  // Carried between frames by the dynamic-mask step so that no image is pyramided or tracked twice:
+  TrackingPyramid previous_pyramid_;  // KLT pyramid of previous_gray_
+  cv::Mat next_gray_;                 // triplet: the frame t+1 of the last call ...
+  TrackingPyramid next_pyramid_;      // ... and its pyramid (frame t's pyramid when it comes back as current)
+  PointTracks next_tracks_;           // triplet: the last call's t -> t+1 tracks (DynamicMaskResult::next_tracks)
 };
 
 }  // namespace dynvo

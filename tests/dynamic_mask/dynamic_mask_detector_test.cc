@@ -107,7 +107,7 @@ TEST(DetectDynamicMask, FindsATexturedObjectMovingAgainstAMovingBackground) {
               0.2);
     EXPECT_EQ(r.backward_mask.empty(), mode == BackwardMode::kNone);
     EXPECT_TRUE(r.backward_failure.empty()) << r.backward_failure;
-    EXPECT_GT(r.num_tracks, 300);
+    EXPECT_GT(r.num_tracks, 150);  // of KltOptions().max_corners = 200
     EXPECT_LT(r.num_static_tracks, r.num_tracks);
     EXPECT_NEAR(r.dynamic_ratio, cv::countNonZero(r.mask) / static_cast<double>(kImage.area()), 1e-12);
     std::cout << "  [" << ToString(mode) << "] recall " << recall << " false positives " << fp << " rounds "
@@ -198,8 +198,8 @@ TEST(DetectDynamicMask, RoundsExcludeObjectTracksAndImproveTheHomography) {
   spec.background_texture_px = spec.object_texture_px;  // equally strong corners on both
 
   // A loose 12 px threshold, object moving (10, 10) px: every object track is a RANSAC inlier
-  // (measured: 0.12 px -> 0.027 px). (With the paper's 2 px threshold RANSAC already rejects most
-  // object tracks and the gain of round 2 is small: 0.041 -> 0.033 px at (3, 3) px.)
+  // (measured: 0.26 px -> 0.055 px with the default 200 corners, 0.12 -> 0.027 px with 400). (With the
+  // paper's 2 px threshold RANSAC already rejects most object tracks and the gain of round 2 is small.)
   spec.velocity = {10, 10};
   const Scene scene = MakeScene(spec);
   HomographyOptions loose;
@@ -209,7 +209,7 @@ TEST(DetectDynamicMask, RoundsExcludeObjectTracksAndImproveTheHomography) {
   EXPECT_EQ(fast.one.rounds_run, 1);
   EXPECT_GE(fast.more.rounds_run, 2);
   EXPECT_LT(fast.error_more, 0.5 * fast.error_one);
-  EXPECT_LT(fast.error_more, 0.04);
+  EXPECT_LT(fast.error_more, 0.08);
   EXPECT_LT(fast.more.num_static_tracks, fast.more.num_tracks * 85 / 100);  // object tracks excluded
   EXPECT_GT(Recall(fast.more.mask, scene.object_mask), 0.7);
   EXPECT_LT(FalsePositiveRate(fast.more.mask, scene.object_mask), 0.05);
@@ -266,7 +266,7 @@ TEST(DetectDynamicMask, TripletTracksIntoNextFrameServeTheNextCall) {
   options.backward = BackwardMode::kTriplet;
   const DynamicMaskResult first = DetectDynamicMask(InputOf(scene, true), KltOptions(), HomographyOptions(), options);
   ASSERT_TRUE(first.ok) << first.failure;
-  ASSERT_GT(first.next_tracks.previous.size(), 300u);
+  ASSERT_GT(first.next_tracks.previous.size(), 150u);  // of KltOptions().max_corners = 200
   ASSERT_EQ(first.next_tracks.previous.size(), first.next_tracks.current.size());
   // Next call: t -> t+1 (no t+2 here, so forward only), once with the handed-over tracks, once tracking anew.
   DynamicMaskInput input;

@@ -1,6 +1,8 @@
 // The small stages of the detector, each alone: compensation, difference, threshold, morphology, regions.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -99,6 +101,29 @@ TEST(OtsuThreshold, IgnoresInvalidPixels) {
   EXPECT_LT(with_mask, 60);
   EXPECT_GE(OtsuThreshold(image), 60);  // counted, the block moves the threshold
   EXPECT_EQ(OtsuThreshold(image, cv::Mat::zeros(100, 100, CV_8UC1)), 0);  // no valid pixel
+}
+
+TEST(OtsuThreshold, ZeroOutsideValidVariantMatchesTheMaskedOne) {
+  // A difference-like image (0 outside the valid region) with two noisy modes and zeros inside
+  // the valid region too: the cheap variant must give exactly the masked Otsu threshold.
+  cv::RNG rng(7);
+  cv::Mat image(120, 160, CV_8UC1);
+  rng.fill(image, cv::RNG::NORMAL, 12, 6);
+  cv::Mat bright(40, 50, CV_8UC1);
+  rng.fill(bright, cv::RNG::NORMAL, 90, 20);
+  bright.copyTo(image(cv::Rect(60, 30, 50, 40)));
+  image(cv::Rect(0, 100, 160, 5)).setTo(0);
+  cv::Mat valid = cv::Mat::zeros(image.size(), CV_8UC1);
+  cv::fillConvexPoly(valid, std::vector<cv::Point>{{10, 5}, {150, 0}, {159, 119}, {0, 110}}, cv::Scalar(255));
+  cv::Mat masked;
+  cv::bitwise_and(image, valid, masked);
+  const int expected = OtsuThreshold(masked, valid);
+  EXPECT_GT(expected, 20);
+  EXPECT_LT(expected, 80);
+  EXPECT_EQ(OtsuThresholdZeroOutsideValid(masked, valid), expected);
+  EXPECT_EQ(OtsuThresholdZeroOutsideValid(masked, cv::Mat()), OtsuThreshold(masked));
+  const cv::Mat nothing_valid = cv::Mat::zeros(image.size(), CV_8UC1);
+  EXPECT_EQ(OtsuThresholdZeroOutsideValid(nothing_valid, nothing_valid), 0);
 }
 
 TEST(DifferenceThreshold, FixedAndFlooredOtsu) {
