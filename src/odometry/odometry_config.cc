@@ -167,6 +167,8 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("tracking.lost_frames_before_reseed", &t->lost_frames_before_reseed,
           "consecutive lost frames before the map is re-seeded from the current frame");
   r->Bind("tracking.max_new_points", &t->max_new_points, "new map points per keyframe at most");
+  r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
+          "match again this close to the first pose estimate and refine once more (0 = off)");
   // run
   r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");

@@ -49,6 +49,9 @@ void TrackerOptions::Check() const {
                      std::to_string(wide_search_factor));
   if (max_new_points < 0)
     throw InputError("tracking.max_new_points must be >= 0, got " + std::to_string(max_new_points));
+  if (!(rematch_radius_px >= 0.0))
+    throw InputError("tracking.rematch_radius_px must be >= 0, got " +
+                     std::to_string(rematch_radius_px));
   if (lost_frames_before_reseed < 1)
     throw InputError("tracking.lost_frames_before_reseed must be >= 1, got " +
                      std::to_string(lost_frames_before_reseed));
@@ -170,6 +173,31 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
               std::to_string(options_.min_matches) + ")";
   }
   result.pose_ms = MillisecondsSince(start);
+  // The prediction may be off by more than the matcher's tolerance on fast motion, so some
+  // matches are wrong and others missed: match again around an estimate, with a tighter
+  // window, and refine from it; keeps the result with more inliers.
+  auto polish = [&](PoseEstimate& current, std::vector<Match>& current_matches) {
+    if (!current.ok || options_.rematch_radius_px <= 0.0) return;
+    Clock::time_point t0 = Clock::now();
+    MatchOptions tight = options_.matching;
+    tight.search_radius_px = options_.rematch_radius_px;
+    std::vector<Match> rematched =
+        MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
+                          current.camera_from_world, tight, &visible_angles_);
+    result.match_ms += MillisecondsSince(t0);
+    t0 = Clock::now();
+    if (static_cast<int>(rematched.size()) >= options_.min_matches) {
+      correspondences(rematched, points, pixels);
+      PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world,
+                                       options_.pose);
+      if (second.ok && second.num_inliers >= current.num_inliers) {
+        current = std::move(second);
+        current_matches = std::move(rematched);
+      }
+    }
+    result.pose_ms += MillisecondsSince(t0);
+  };
+  polish(estimate, matches);
   if (!estimate.ok && features.size() > 0 && !visible_ids_.empty()) {
     start = Clock::now();
     MatchOptions wide = options_.matching;
@@ -195,6 +223,7 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
     }
     result.pose_ms += MillisecondsSince(start);
   }
+  if (result.used_epnp) polish(estimate, matches);
   result.num_matches = static_cast<int>(matches.size());
   return estimate;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Frame-to-local-map tracking: constant-velocity prediction, projection matching, pose
-// refinement (EPnP + RANSAC when the prediction fails), keyframe insertion with new map points
-// from the frame's depth, local bundle adjustment at each keyframe, a bounded map, and
-// recovery from failures. The world frame is the first frame's camera.
+// refinement (EPnP + RANSAC when the prediction fails), matching again around the estimate and
+// refining once more, keyframe insertion with new map points from the frame's depth, local
+// bundle adjustment at each keyframe, a bounded map, and recovery from failures. The world frame is the first frame's camera.
 
 #include <cstdint>
 #include <string>
@@ -32,6 +32,10 @@ struct TrackerOptions {
   int lost_frames_before_reseed = 3;   // consecutive failed frames before the map is re-seeded (>= 1)
   int max_new_points = 500;            // new map points per keyframe, the nearest first (>= 0);
                                        // bounds duplicates of points that failed to match
+  double rematch_radius_px = 5.0;      // after the first pose estimate, match again around it
+                                       // within this radius and refine again (pixels; 0 = off,
+                                       // >= 0); not yet a config key
+
   // Throws InputError naming the key ("tracking.min_matches ...", "pose.min_inliers ...")
   // when this or any sub-option is out of range.
   void Check() const;
@@ -67,8 +71,10 @@ class FrameTracker {
 
  private:
   // Matches the frame to the map around the prediction and estimates its pose: refinement of
-  // the prediction, else EPnP + RANSAC on a wider search. Fills `matches` (those the estimate
-  // refers to), `failure` (why, when not ok) and the match/pose times of `result`.
+  // the prediction, else EPnP + RANSAC on a wider search; then re-matching within
+  // rematch_radius_px of that estimate and refining, kept when it has at least as many
+  // inliers. Fills `matches` (those the estimate refers to), `failure` (why, when not ok) and
+  // the match/pose times of `result`.
   PoseEstimate EstimateFramePose(const FrameFeatures& features,
                                  const Pose& predicted_camera_from_world,
                                  std::vector<Match>& matches, std::string& failure,

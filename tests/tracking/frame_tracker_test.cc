@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -70,6 +71,14 @@ TEST(TrackerOptions, CheckNamesTheKey) {
   options = {};
   options.wide_search_factor = 0.5;
   EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.rematch_radius_px = -1.0;
+  try {
+    options.Check();
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "tracking.rematch_radius_px must be >= 0, got -1.000000");
+  }
 }
 
 TEST(FrameTracker, RejectsInconsistentFeatures) {
@@ -204,6 +213,55 @@ TEST(FrameTracker, UnpredictedTurnFallsBackToEpnp) {
   }
   // The turn enters the motion model once, so at most the next frame needs EPnP as well.
   EXPECT_LE(epnp_frames, 2);
+}
+
+// Tracks SmoothPath with an unpredicted turn of `turn_deg` about the camera's y axis from frame
+// 30 on; returns the result of frame 30 and its per-frame error (metres, degrees).
+struct TurnFrame {
+  TrackingResult result;
+  double t_error = 0.0, r_error = 0.0;
+};
+TurnFrame TrackUnpredictedTurn(double turn_deg, const TrackerOptions& options) {
+  const test::SyntheticWorld world = RoomWorld();
+  std::mt19937 rng(4);
+  test::RenderOptions render;
+  render.max_features = 500;
+  FrameTracker tracker(world.camera, options);
+  const Pose turn = PoseFromAxisAngle({0.0, turn_deg / kRadToDeg, 0.0}, {0, 0, 0});
+  TurnFrame out;
+  Pose est_prev, true_prev;
+  for (int i = 0; i <= 30; ++i) {
+    const Pose truth = i < 30 ? SmoothPath(i) : SmoothPath(i) * turn;
+    out.result = tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
+    if (i == 30)
+      std::tie(out.t_error, out.r_error) =
+          FrameError(est_prev, out.result.world_from_camera, true_prev, truth);
+    est_prev = out.result.world_from_camera;
+    true_prev = truth;
+  }
+  return out;
+}
+
+TEST(FrameTracker, RematchAroundTheRefinedPoseRecoversMissedMatches) {
+  // A 1.6 degree unpredicted turn moves features 15 px (image centre) to 20 px (left and right
+  // borders) from their prediction: the 15 px search misses the border ones, so the first
+  // refinement rests on a part of the image only. Matching again around the refined pose
+  // (within 5 px) finds them.
+  TrackerOptions without;
+  without.rematch_radius_px = 0.0;
+  const TurnFrame a = TrackUnpredictedTurn(1.6, without);
+  const TurnFrame b = TrackUnpredictedTurn(1.6, TrackerOptions{});
+  ASSERT_EQ(a.result.state, TrackingState::kTracking) << a.result.note;
+  ASSERT_EQ(b.result.state, TrackingState::kTracking) << b.result.note;
+  EXPECT_FALSE(a.result.used_epnp);
+  EXPECT_FALSE(b.result.used_epnp);
+  std::cout << "[ rematch ] inliers " << a.result.num_inliers << " -> " << b.result.num_inliers
+            << "; frame error " << a.t_error * 1000 << " mm " << a.r_error << " deg -> "
+            << b.t_error * 1000 << " mm " << b.r_error << " deg\n";
+  // Measured: 130 -> 487 inliers, 0.055 -> 0.007 degrees; the bars leave margin on both.
+  EXPECT_GT(b.result.num_inliers, a.result.num_inliers + 100);
+  EXPECT_LT(b.t_error, 0.005);
+  EXPECT_LT(b.r_error, 0.03);
 }
 
 TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
