@@ -20,6 +20,8 @@
 #include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 
+#include "pose/reprojection_error.h"
+
 namespace dynvo {
 
 // Reference implementation with automatic derivatives (used by the tests to check the
@@ -35,12 +37,8 @@ class RgbdReprojectionError {
 
   template <typename T>
   bool operator()(const T* q_xyzw, const T* t, const T* point_in_world, T* residual) const {
-    const T q_wxyz[4] = {q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]};
     T p[3];
-    ceres::UnitQuaternionRotatePoint(q_wxyz, point_in_world, p);
-    p[0] += t[0];
-    p[1] += t[1];
-    p[2] += t[2];
+    internal::WorldToCamera(q_xyzw, t, point_in_world, p);
     if (p[2] < T(1e-6)) {
       residual[0] = residual[1] = residual[2] = T(1e3);
       return true;

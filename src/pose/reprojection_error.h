@@ -16,15 +16,21 @@ namespace dynvo {
 
 namespace internal {
 
+// p = R(q) * X + t: a world point in camera coordinates, q in Eigen's [x, y, z, w] order.
 template <typename T>
-bool ProjectResidual(const T* q_xyzw, const T* t, const T* point_in_world, double fx, double fy,
-                     double cx, double cy, const Eigen::Vector2d& observed, T* residual) {
+void WorldToCamera(const T* q_xyzw, const T* t, const T* point_in_world, T* p) {
   const T q_wxyz[4] = {q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]};
-  T p[3];
   ceres::UnitQuaternionRotatePoint(q_wxyz, point_in_world, p);
   p[0] += t[0];
   p[1] += t[1];
   p[2] += t[2];
+}
+
+template <typename T>
+bool ProjectResidual(const T* q_xyzw, const T* t, const T* point_in_world, double fx, double fy,
+                     double cx, double cy, const Eigen::Vector2d& observed, T* residual) {
+  T p[3];
+  WorldToCamera(q_xyzw, t, point_in_world, p);
   if (p[2] < T(1e-6)) {
     residual[0] = T(1e3);
     residual[1] = T(1e3);
