@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "synth/synthetic_sequence.h"
 #include "synth/tum_writer.h"
+#include "tool_main.h"
 
 int main(int argc, char** argv) {
   const char* prog = "dynvo-synth";
@@ -37,15 +38,7 @@ int main(int argc, char** argv) {
   app.add_flag("--motion-blur", motion_blur, "blur frames over the exposure (20 ms, at most half a frame)");
   app.add_option("--out", out, "output folder (TUM layout)")->required();
   app.add_flag("--force", force, "replace the generated files of an existing non-empty --out");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  try {
+  return dynvo::RunToolMain(prog, app, argc, argv, [&] {
     dynvo::SyntheticSequenceOptions options;
     options.scenario = dynvo::ParseScenario(scenario, "--scenario");
     options.camera_path = dynvo::ParseCameraPathPreset(camera_path, "--camera-path");
@@ -75,9 +68,5 @@ int main(int argc, char** argv) {
                 "%d frames show moving objects, mean dynamic pixel ratio %.3f\n",
                 prog, summary.frames, width, height, scenario.c_str(), camera_path.c_str(), seed, out.c_str(),
                 seconds, summary.frames_with_people, summary.mean_dynamic_ratio);
-  } catch (const std::exception& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  });
 }

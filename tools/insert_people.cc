@@ -15,6 +15,7 @@
 #include "synth/people_insertion.h"
 #include "synth/person_cutout.h"
 #include "synth/tum_writer.h"
+#include "tool_main.h"
 
 namespace {
 
@@ -53,15 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the drawn person and of GrabCut")->capture_default_str();
   app.add_option("--out", out, "output folder (TUM layout with masks/)")->required();
   app.add_flag("--force", force, "replace the generated files of an existing non-empty --out");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  try {
+  return dynvo::RunToolMain(prog, app, argc, argv, [&] {
     options.preset = dynvo::ParseScenario(preset, "--preset");
     options.Check();
     dynvo::PersonCutout cutout;
@@ -89,9 +82,5 @@ int main(int argc, char** argv) {
                 "mean dynamic pixel ratio %.3f, walking distance %.1f m\n",
                 prog, summary.frames, out.c_str(), seconds, summary.frames_with_people, summary.frames_without_pose,
                 summary.mean_dynamic_ratio, summary.distance_m);
-  } catch (const std::exception& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  });
 }

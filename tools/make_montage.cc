@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "dataset/tum_dataset.h"
 #include "synth/tum_writer.h"
+#include "tool_main.h"
 
 namespace {
 
@@ -55,15 +56,7 @@ int main(int argc, char** argv) {
   app.add_option("--tile-width", tile_width, "width of one tile in pixels")->capture_default_str();
   app.add_option("--out", out, "output PNG")->required();
   app.add_flag("--force", force, "overwrite an existing --out");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  try {
+  return dynvo::RunToolMain(prog, app, argc, argv, [&] {
     if (tile_width < 64 || tile_width > 2048) throw dynvo::InputError("--tile-width must be in [64, 2048]");
     if (std::filesystem::exists(out) && !force) throw dynvo::InputError(out + ": exists (use --force to overwrite)");
     dynvo::TumDatasetOptions options;
@@ -107,9 +100,5 @@ int main(int argc, char** argv) {
     cv::vconcat(rows, montage);
     if (!cv::imwrite(out, montage)) throw dynvo::InputError(out + ": cannot write PNG");
     std::cout << prog << ": wrote " << out << " (" << montage.cols << "x" << montage.rows << ")\n";
-  } catch (const std::exception& e) {
-    std::cerr << prog << ": error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  });
 }

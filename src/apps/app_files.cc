@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 #include "core/error.h"
 
@@ -20,6 +21,17 @@ Trajectory ReadNonEmptyTrajectory(const std::string& path) {
   Trajectory trajectory = ReadTrajectory(path);
   if (trajectory.empty()) ThrowFileError(path, 0, "no poses in file");
   return trajectory;
+}
+
+void PrintMetrics(bool json, nlohmann::json report, const std::string& text,
+                  const std::string& groundtruth_path, const std::string& estimate_path) {
+  if (!json) {
+    std::cout << text;
+    return;
+  }
+  report["groundtruth"] = groundtruth_path;
+  report["estimate"] = estimate_path;
+  std::cout << report.dump(2) << "\n";
 }
 
 }  // namespace dynvo

@@ -1,7 +1,9 @@
 #pragma once
-// File helpers shared by the rpe and ate executables.
+// Helpers shared by the rpe and ate executables: trajectories in, reports and files out.
 
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "dataset/trajectory_io.h"
 
@@ -13,5 +15,10 @@ void WriteOutputFile(const std::string& path, const std::string& content, bool f
 
 // ReadTrajectory, and an InputError naming the file when it holds no pose.
 Trajectory ReadNonEmptyTrajectory(const std::string& path);
+
+// Prints the metrics to stdout: `report` (with the two input paths added) as indented JSON
+// when `json`, else `text`.
+void PrintMetrics(bool json, nlohmann::json report, const std::string& text,
+                  const std::string& groundtruth_path, const std::string& estimate_path);
 
 }  // namespace dynvo

@@ -60,14 +60,8 @@ int Run(int argc, char** argv) {
                 dynvo::FormatTrajectory(
                     dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
                 force);
-  if (json) {
-    nlohmann::json j = dynvo::AteJson(result, options);
-    j["groundtruth"] = gt_path;
-    j["estimate"] = est_path;
-    std::cout << j.dump(2) << "\n";
-  } else {
-    std::cout << dynvo::FormatAteText(result);
-  }
+  dynvo::PrintMetrics(json, dynvo::AteJson(result, options), dynvo::FormatAteText(result), gt_path,
+                      est_path);
   return 0;
 }
 

@@ -70,14 +70,8 @@ int Run(int argc, char** argv) {
   const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
   const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
   if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
-  if (json) {
-    nlohmann::json j = dynvo::RpeJson(result, options);
-    j["groundtruth"] = gt_path;
-    j["estimate"] = est_path;
-    std::cout << j.dump(2) << "\n";
-  } else {
-    std::cout << dynvo::FormatRpeText(result);
-  }
+  dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path,
+                      est_path);
   return 0;
 }
 

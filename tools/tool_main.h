@@ -1,0 +1,34 @@
+#pragma once
+// The shared shape of the data-generator programs: parse the command line, run the job, and
+// report the way every dynvo program does.
+
+#include <exception>
+#include <functional>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+namespace dynvo {
+
+// Parses `app` and runs `job`. --help prints the usage (exit 0); a usage error or an
+// exception from the job prints one line "<prog>: error: <message>" on stderr (exit 1).
+inline int RunToolMain(const char* prog, CLI::App& app, int argc, char** argv,
+                       const std::function<void()>& job) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << prog << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  try {
+    job();
+  } catch (const std::exception& e) {
+    std::cerr << prog << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace dynvo
