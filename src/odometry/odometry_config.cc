@@ -161,11 +161,17 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("local_ba.rounds", &t->local_ba.rounds, "BA solves with outliers dropped in between");
   r->Bind("local_ba.virtual_baseline_m", &t->local_ba.virtual_baseline_m,
           "stereo baseline that weighs the depth residual of an observation");
+  r->Bind("local_ba.background", &t->local_ba.background,
+          "run the BA on a second thread beside the next frame's mask and features (same result "
+          "whatever the timing; the keyframe's own output pose is the tracked one)");
   r->Bind("tracking.min_matches", &t->min_matches, "fewer map matches: wider search, then lost");
   r->Bind("tracking.wide_search_factor", &t->wide_search_factor,
           "search radius multiplier of the retry after too few matches");
   r->Bind("tracking.lost_frames_before_reseed", &t->lost_frames_before_reseed,
           "consecutive lost frames before the map is re-seeded from the current frame");
+  r->Bind("tracking.max_ba_depth_rotation_deg_s", &t->max_ba_depth_rotation_deg_s,
+          "deg/s: a keyframe taken while the camera turns faster keeps its depths out of local BA "
+          "(unsynchronised rolling-shutter sensors misplace depth then; 0 = never)");
   r->Bind("tracking.max_new_points", &t->max_new_points, "new map points per keyframe at most");
   r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
           "match again this close to the first pose estimate and refine once more (0 = off)");

@@ -49,6 +49,9 @@ void TrackerOptions::Check() const {
                      std::to_string(wide_search_factor));
   if (max_new_points < 0)
     throw InputError("tracking.max_new_points must be >= 0, got " + std::to_string(max_new_points));
+  if (!(max_ba_depth_rotation_deg_s >= 0.0))
+    throw InputError("tracking.max_ba_depth_rotation_deg_s must be >= 0, got " +
+                     std::to_string(max_ba_depth_rotation_deg_s));
   if (!(rematch_radius_px >= 0.0))
     throw InputError("tracking.rematch_radius_px must be >= 0, got " +
                      std::to_string(rematch_radius_px));
@@ -63,10 +66,27 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
   options_.Check();
 }
 
+const LocalMap& FrameTracker::map() {
+  TrackingResult ignored;
+  FinishBackgroundBundleAdjustment(ignored);
+  return map_;
+}
+
+void FrameTracker::FinishBackgroundBundleAdjustment(TrackingResult& result) {
+  if (!background_ba_.valid()) return;
+  const TimedReport finished = background_ba_.get();
+  result.local_ba_ms = finished.ms;
+  if (!finished.report.ok) return;
+  result.local_ba_rms_px = finished.report.final_inlier_rms_px;
+  // The BA was started at the last frame, a keyframe: its refined pose is the motion model's last.
+  motion_.ReplaceLast(map_.keyframes().back().camera_from_world.inverse());
+}
+
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) {
   CheckFeatures(features);
   ++frame_index_;
   TrackingResult result;
+  FinishBackgroundBundleAdjustment(result);
 
   if (!initialized_) {
     const Clock::time_point start = Clock::now();
@@ -127,6 +147,16 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) 
   motion_.Update(result.world_from_camera, stamp);
   result.map_keyframes = static_cast<int>(map_.num_keyframes());
   result.map_points = static_cast<int>(map_.num_points());
+  if (start_background_ba_) {
+    start_background_ba_ = false;
+    background_ba_ = std::async(std::launch::async, [this] {
+      const Clock::time_point began = Clock::now();
+      TimedReport timed;
+      timed.report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
+      timed.ms = MillisecondsSince(began);
+      return timed;
+    });
+  }
   return result;
 }
 
@@ -277,6 +307,14 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   keyframe.frame_index = frame_index_;
   keyframe.stamp = stamp;
   keyframe.camera_from_world = world_from_camera.inverse();
+  // Unsynchronised rolling-shutter RGB-D cameras (Kinect v1: depth stamps up to ~15 ms off the
+  // colour ones) misplace depth against colour by several pixels while the camera turns fast.
+  // The new points still start from that depth, but BA weighs their image positions only.
+  const double rotation_deg_s =
+      motion_.AngularSpeedTo(world_from_camera, stamp) * 180.0 / 3.14159265358979323846;
+  result.keyframe_depth_in_ba = options_.max_ba_depth_rotation_deg_s <= 0.0 ||
+                                rotation_deg_s <= options_.max_ba_depth_rotation_deg_s;
+  const auto ba_depth = [&](double depth) { return result.keyframe_depth_in_ba ? std::max(depth, 0.0) : 0.0; };
   std::vector<uint8_t> tracked(features.size(), 0);
   for (size_t i = 0; i < matches.size(); ++i) {
     if (!inliers[i]) continue;
@@ -284,7 +322,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
     const int64_t id = visible_ids_[static_cast<size_t>(matches[i].point_index)];
     tracked[f] = 1;
     keyframe.observations.push_back(
-        {id, features.pixels[f], std::max(features.depths[f], 0.0)});
+        {id, features.pixels[f], ba_depth(features.depths[f])});
     map_.SetAppearance(id, features.descriptors.row(static_cast<int>(f)), features.keypoints[f].angle);
   }
   // New points from the untracked features with depth, the nearest (most accurate) first.
@@ -302,7 +340,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
     const int64_t id = map_.AddPoint(world_from_camera * features.points_in_camera[i],
                                      features.descriptors.row(static_cast<int>(i)), frame_index_,
                                      features.keypoints[i].angle);
-    keyframe.observations.push_back({id, features.pixels[i], features.depths[i]});
+    keyframe.observations.push_back({id, features.pixels[i], ba_depth(features.depths[i])});
   }
   map_.AddKeyframe(std::move(keyframe));
   result.keyframe_inserted = true;
@@ -310,14 +348,18 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
 
   start = Clock::now();
   Pose refined = world_from_camera;
-  if (options_.local_ba.enabled) {
+  if (options_.local_ba.enabled && options_.local_ba.background) {
+    // The frame's output keeps the tracked pose; the refined one reaches the motion model
+    // when the next frame waits for the BA.
+    start_background_ba_ = true;  // at the end of Track, once the map is no longer read
+  } else if (options_.local_ba.enabled) {
     const BundleAdjustmentReport report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
     if (report.ok) {
       refined = map_.keyframes().back().camera_from_world.inverse();
       result.local_ba_rms_px = report.final_inlier_rms_px;
     }
   }
-  result.local_ba_ms = MillisecondsSince(start);
+  if (!start_background_ba_) result.local_ba_ms = MillisecondsSince(start);
   frames_since_keyframe_ = 0;
   // The inliers of the keyframe (as ORB-SLAM counts the reference keyframe's points seen by
   // several keyframes): new points, seen once, do not count, or the ratio would fire on every

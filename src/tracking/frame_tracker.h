@@ -5,6 +5,7 @@
 // bundle adjustment at each keyframe, a bounded map, and recovery from failures. The world frame is the first frame's camera.
 
 #include <cstdint>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct TrackerOptions {
   int lost_frames_before_reseed = 3;   // consecutive failed frames before the map is re-seeded (>= 1)
   int max_new_points = 500;            // new map points per keyframe, the nearest first (>= 0);
                                        // bounds duplicates of points that failed to match
+  double max_ba_depth_rotation_deg_s = 30.0;  // a keyframe taken while the camera turns faster
+                                       // keeps its depths out of local BA; its new points still
+                                       // start from depth (deg/s; 0 = never; >= 0)
   double rematch_radius_px = 5.0;      // after the first pose estimate, match again around it
                                        // within this radius and refine again (pixels; 0 = off,
                                        // >= 0); not yet a config key
@@ -51,8 +55,13 @@ struct TrackingResult {
   bool keyframe_inserted = false;
   int map_keyframes = 0;          // local map size after this frame
   int map_points = 0;
-  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only)
-  double match_ms = 0, pose_ms = 0, map_ms = 0, local_ba_ms = 0;  // per-stage wall times, ms
+  bool keyframe_depth_in_ba = true;  // false: the new keyframe's depths were left out of BA
+                                     // (see max_ba_depth_rotation_deg_s)
+  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only; with
+                                  // local_ba.background, of the one that finished in this frame)
+  double match_ms = 0, pose_ms = 0, map_ms = 0;  // per-stage wall times, ms
+  double local_ba_ms = 0;  // local BA wall time; with local_ba.background, of the BA that ran
+                           // during this frame (started at the previous keyframe)
 };
 
 class FrameTracker {
@@ -66,7 +75,8 @@ class FrameTracker {
   // Throws InputError when the feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp);
 
-  const LocalMap& map() const { return map_; }
+  // The local map, after any background bundle adjustment has finished.
+  const LocalMap& map();
   const TrackerOptions& options() const { return options_; }
 
  private:
@@ -91,6 +101,10 @@ class FrameTracker {
                       const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
                       TrackingResult& result);
 
+  // Waits for the bundle adjustment started at the last keyframe (local_ba.background), if
+  // any, and applies its refined keyframe pose to the motion model; reports it in `result`.
+  void FinishBackgroundBundleAdjustment(TrackingResult& result);
+
   Camera camera_;
   TrackerOptions options_;
   LocalMap map_;
@@ -105,6 +119,14 @@ class FrameTracker {
   std::vector<Eigen::Vector3d> visible_points_;
   std::vector<float> visible_angles_;  // ORB angle of each point's reference observation
   cv::Mat visible_descriptors_;
+  // The local BA started at the last keyframe with local_ba.background (declared last so that
+  // it is destroyed, and so waited for, before the map it works on).
+  struct TimedReport {
+    BundleAdjustmentReport report;
+    double ms = 0.0;
+  };
+  std::future<TimedReport> background_ba_;
+  bool start_background_ba_ = false;  // a keyframe was inserted; its BA starts as Track returns
 };
 
 }  // namespace dynvo

@@ -1,6 +1,7 @@
 #include "tracking/motion_model.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dynvo {
 
@@ -26,6 +27,18 @@ void ConstantVelocityModel::Update(const Pose& world_from_camera, double stamp) 
   last_world_from_camera_ = world_from_camera;
   last_stamp_ = stamp;
   num_poses_ = std::min(num_poses_ + 1, 2);
+}
+
+void ConstantVelocityModel::ReplaceLast(const Pose& world_from_camera) {
+  if (num_poses_ == 0) return;
+  if (num_poses_ >= 2) previous_from_last_ = previous_from_last_ * last_world_from_camera_.inverse() * world_from_camera;
+  last_world_from_camera_ = world_from_camera;
+}
+
+double ConstantVelocityModel::AngularSpeedTo(const Pose& world_from_camera, double stamp) const {
+  if (num_poses_ == 0 || !(stamp > last_stamp_)) return 0.0;
+  const Eigen::AngleAxisd rotation(last_world_from_camera_.linear().transpose() * world_from_camera.linear());
+  return std::abs(rotation.angle()) / (stamp - last_stamp_);
 }
 
 void ConstantVelocityModel::Reset() { *this = ConstantVelocityModel(); }

@@ -15,6 +15,14 @@ class ConstantVelocityModel {
   // Records the camera pose of a new frame taken at `stamp` (seconds).
   void Update(const Pose& world_from_camera, double stamp);
 
+  // Replaces the last recorded pose (a keyframe pose refined after it was recorded); the
+  // motion from the pose before is recomputed. Does nothing before any pose was recorded.
+  void ReplaceLast(const Pose& world_from_camera);
+
+  // Rotation speed (rad/s) from the last recorded pose to `world_from_camera` at `stamp`; 0
+  // before any pose or when the stamp does not increase.
+  double AngularSpeedTo(const Pose& world_from_camera, double stamp) const;
+
   // Forgets everything: the next prediction is the identity.
   void Reset();
 
