@@ -67,26 +67,28 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
 }
 
 const LocalMap& FrameTracker::map() {
-  TrackingResult ignored;
-  FinishBackgroundBundleAdjustment(ignored);
+  WaitForBackgroundBundleAdjustment();
   return map_;
 }
 
-void FrameTracker::FinishBackgroundBundleAdjustment(TrackingResult& result) {
+void FrameTracker::WaitForBackgroundBundleAdjustment() {
   if (!background_ba_.valid()) return;
-  const TimedReport finished = background_ba_.get();
-  result.local_ba_ms = finished.ms;
-  if (!finished.report.ok) return;
-  result.local_ba_rms_px = finished.report.final_inlier_rms_px;
+  finished_ba_ = background_ba_.get();
+  finished_ba_unreported_ = true;
   // The BA was started at the last frame, a keyframe: its refined pose is the motion model's last.
-  motion_.ReplaceLast(map_.keyframes().back().camera_from_world.inverse());
+  if (finished_ba_.report.ok) motion_.ReplaceLast(map_.keyframes().back().camera_from_world.inverse());
 }
 
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) {
   CheckFeatures(features);
   ++frame_index_;
   TrackingResult result;
-  FinishBackgroundBundleAdjustment(result);
+  WaitForBackgroundBundleAdjustment();
+  if (finished_ba_unreported_) {
+    finished_ba_unreported_ = false;
+    result.local_ba_ms = finished_ba_.ms;
+    if (finished_ba_.report.ok) result.local_ba_rms_px = finished_ba_.report.final_inlier_rms_px;
+  }
 
   if (!initialized_) {
     const Clock::time_point start = Clock::now();

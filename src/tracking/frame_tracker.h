@@ -102,8 +102,8 @@ class FrameTracker {
                       TrackingResult& result);
 
   // Waits for the bundle adjustment started at the last keyframe (local_ba.background), if
-  // any, and applies its refined keyframe pose to the motion model; reports it in `result`.
-  void FinishBackgroundBundleAdjustment(TrackingResult& result);
+  // any, and applies its refined keyframe pose to the motion model; the next Track reports it.
+  void WaitForBackgroundBundleAdjustment();
 
   Camera camera_;
   TrackerOptions options_;
@@ -126,6 +126,8 @@ class FrameTracker {
     double ms = 0.0;
   };
   std::future<TimedReport> background_ba_;
+  TimedReport finished_ba_;           // the last one waited for, until Track reports it
+  bool finished_ba_unreported_ = false;
   bool start_background_ba_ = false;  // a keyframe was inserted; its BA starts as Track returns
 };
 

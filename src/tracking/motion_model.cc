@@ -21,7 +21,8 @@ Pose ConstantVelocityModel::Predict(double stamp) const {
 
 void ConstantVelocityModel::Update(const Pose& world_from_camera, double stamp) {
   if (num_poses_ >= 1) {
-    previous_from_last_ = last_world_from_camera_.inverse() * world_from_camera;
+    previous_world_from_camera_ = last_world_from_camera_;
+    previous_from_last_ = previous_world_from_camera_.inverse() * world_from_camera;
     last_gap_ = stamp - last_stamp_;
   }
   last_world_from_camera_ = world_from_camera;
@@ -31,7 +32,7 @@ void ConstantVelocityModel::Update(const Pose& world_from_camera, double stamp) 
 
 void ConstantVelocityModel::ReplaceLast(const Pose& world_from_camera) {
   if (num_poses_ == 0) return;
-  if (num_poses_ >= 2) previous_from_last_ = previous_from_last_ * last_world_from_camera_.inverse() * world_from_camera;
+  if (num_poses_ >= 2) previous_from_last_ = previous_world_from_camera_.inverse() * world_from_camera;
   last_world_from_camera_ = world_from_camera;
 }
 

@@ -32,6 +32,7 @@ class ConstantVelocityModel {
 
  private:
   int num_poses_ = 0;
+  Pose previous_world_from_camera_ = Pose::Identity();
   Pose last_world_from_camera_ = Pose::Identity();
   Pose previous_from_last_ = Pose::Identity();
   double last_stamp_ = 0.0;

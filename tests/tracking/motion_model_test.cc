@@ -34,5 +34,30 @@ TEST(ConstantVelocityModel, PredictsTheLastMotionAgain) {
   EXPECT_TRUE(model.Predict(1.0).isApprox(Pose::Identity()));
 }
 
+TEST(ConstantVelocityModel, ReplaceLastRecomputesTheMotion) {
+  ConstantVelocityModel model;
+  model.ReplaceLast(PoseFromAxisAngle({0.1, 0, 0}, {1, 0, 0}));  // nothing recorded: no effect
+  EXPECT_TRUE(model.Predict(0.0).isApprox(Pose::Identity()));
+  const Pose a = PoseFromAxisAngle({0.1, 0.0, 0.2}, {1, 2, 3});
+  const Pose step = PoseFromAxisAngle({0.0, 0.02, 0.0}, {0.01, 0, 0.005});
+  model.Update(a, 0.0);
+  model.Update(a * PoseFromAxisAngle({0.3, 0, 0}, {0.5, 0, 0}), 0.033);
+  // The refined pose replaces the recorded one, as if it had been recorded in the first place.
+  model.ReplaceLast(a * step);
+  EXPECT_TRUE(model.Predict(0.066).isApprox(a * step * step, 1e-12));
+  EXPECT_TRUE(model.last_motion().isApprox(step, 1e-12));
+}
+
+TEST(ConstantVelocityModel, AngularSpeedToANewPose) {
+  ConstantVelocityModel model;
+  EXPECT_EQ(model.AngularSpeedTo(Pose::Identity(), 1.0), 0.0);  // no pose yet
+  const Pose a = PoseFromAxisAngle({0.1, 0.0, 0.2}, {1, 2, 3});
+  model.Update(a, 1.0);
+  // 0.05 rad about an arbitrary axis in 0.025 s: 2 rad/s, whatever the translation.
+  const Pose turned = a * PoseFromAxisAngle(Eigen::Vector3d(0.6, 0.0, 0.8) * 0.05, {0.3, 0, 0});
+  EXPECT_NEAR(model.AngularSpeedTo(turned, 1.025), 2.0, 1e-9);
+  EXPECT_EQ(model.AngularSpeedTo(turned, 1.0), 0.0);  // stamp does not increase
+}
+
 }  // namespace
 }  // namespace dynvo
