@@ -17,14 +17,10 @@ results="$root/bench/results"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)" --target dynvo-cli rpe dynvo-synth dynvo-insert-people >/dev/null
 bin="$build/bin"
-mkdir -p "$work/seq" "$work/runs" "$results"
-
-synth() {  # name scenario camera_path
-  local dir="$work/seq/$1"
-  [ -f "$dir/rgb.txt" ] || "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" \
-    --seed "$seed" --out "$dir" --force >&2
-  echo "$dir"
-}
+mkdir -p "$work/runs" "$results"
+sequences="$work/seq"
+DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$shared" bash "$root/tools/make_sequences.sh" \
+  --out "$sequences" --frames "$frames" --seed "$seed" >/dev/null
 
 # run <sequence dir> <mode> -> prints "rpe_rmse mask_iou processing_median_ms"
 run() {
@@ -53,19 +49,15 @@ row() {  # name kind seq twin_seq_or_empty
   echo "accuracy: $name done" >&2
 }
 
-twin=$(synth synth_none_xyz none xyz)
 for scenario in walking_across two_crossing walking_toward sitting_sway; do
-  row "synth_${scenario}_xyz" "synthetic dynamic" "$(synth "synth_${scenario}_xyz" "$scenario" xyz)" "$twin"
+  row "synth_${scenario}_xyz" "synthetic dynamic" "$sequences/synth_${scenario}_xyz" "$sequences/synth_none_xyz"
 done
 
 fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"
 fr2="$shared/data/tum/rgbd_dataset_freiburg2_desk_head50"
 if [ -d "$fr1" ]; then
   for preset in walking_across two_crossing; do
-    people="$work/seq/fr1_rpy_head150_$preset"
-    [ -f "$people/rgb.txt" ] || "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
-      --out "$people" --force >&2
-    row "fr1_rpy_head150 + $preset" "real + inserted people" "$people" "$fr1"
+    row "fr1_rpy_head150 + $preset" "real + inserted people" "$sequences/fr1_rpy_head150_$preset" "$fr1"
   done
   row "fr1_rpy_head150" "real static" "$fr1" ""
 else

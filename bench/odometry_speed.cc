@@ -2,13 +2,17 @@
 // (cv::rgbd::RgbdOdometry, cv::rgbd::ICPOdometry) on the same frames, in the same process.
 // Frames are decoded into memory first, so only processing is timed (as in the paper and
 // ORB-SLAM2's reports). Prints medians over frames, the median over runs, the ratio to
-// RgbdOdometry and the per-stage split of our pipeline.
+// RgbdOdometry and the per-stage split of our pipeline. --scale resizes the frames in memory
+// (and the intrinsics with them) to measure how the cost grows with resolution; --set
+// overrides config keys (e.g. features.num_features) to measure it against other parameters.
 //
 //   odometry_speed --dataset DIR [--config configs/paper.json] [--runs 3] [--frames N]
-//                  [--set key=value]... [--trajectories-out DIR] [--json FILE]
+//                  [--scale 1] [--no-peers] [--set key=value]... [--trajectories-out DIR]
+//                  [--json FILE]
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +22,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/rgbd.hpp>
 
 #include "core/error.h"
@@ -83,6 +88,34 @@ MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>&
   return result;
 }
 
+// The camera of images resized by `scale`: focal lengths scale, and the principal point
+// with pixel centres kept aligned (pixel i covers [i - 0.5, i + 0.5]).
+dynvo::Camera ScaledCamera(const dynvo::Camera& camera, double scale) {
+  dynvo::Camera scaled = camera;
+  scaled.width = static_cast<int>(std::lround(camera.width * scale));
+  scaled.height = static_cast<int>(std::lround(camera.height * scale));
+  scaled.fx = camera.fx * scaled.width / camera.width;
+  scaled.fy = camera.fy * scaled.height / camera.height;
+  scaled.cx = (camera.cx + 0.5) * scaled.width / camera.width - 0.5;
+  scaled.cy = (camera.cy + 0.5) * scaled.height / camera.height - 0.5;
+  return scaled;
+}
+
+// Resizes a frame to the camera's size: colour and grey by area averaging when shrinking and
+// bilinearly when enlarging, depth by nearest neighbour (no depth mixed across edges).
+void ResizeFrame(dynvo::RgbdFrame& frame, const dynvo::Camera& camera) {
+  const cv::Size size(camera.width, camera.height);
+  if (frame.gray.size() == size) return;
+  const int interpolation = size.width < frame.gray.cols ? cv::INTER_AREA : cv::INTER_LINEAR;
+  cv::Mat bgr, gray, depth;
+  cv::resize(frame.bgr, bgr, size, 0, 0, interpolation);
+  cv::resize(frame.gray, gray, size, 0, 0, interpolation);
+  cv::resize(frame.depth, depth, size, 0, 0, cv::INTER_NEAREST);
+  frame.bgr = bgr;
+  frame.gray = gray;
+  frame.depth = depth;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -90,11 +123,18 @@ int main(int argc, char** argv) {
   std::string dataset_dir, config_path, trajectories_out, json_out;
   std::vector<std::string> overrides;
   int runs = 3, max_frames = 0;
+  double scale = 1.0;
+  bool no_peers = false;
   app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
   app.add_option("--config", config_path, "dynvo config (default: built-in = paper)");
   app.add_option("--set", overrides, "config override key=value (repeatable)");
   app.add_option("--runs", runs, "repetitions of each method (median over runs)")->check(CLI::Range(1, 100));
   app.add_option("--frames", max_frames, "use at most this many frames (0 = all)");
+  app.add_option("--scale", scale,
+                 "resize the frames by this factor (depth nearest-neighbour) and scale the "
+                 "intrinsics: 0.5 gives 320x240 from 640x480, 2 gives 1280x960")
+      ->check(CLI::Range(0.1, 4.0));
+  app.add_flag("--no-peers", no_peers, "time dynvo only, not the OpenCV odometries");
   app.add_option("--trajectories-out", trajectories_out, "write each method's trajectory here");
   app.add_option("--json", json_out, "write the figures as JSON to this file");
   CLI11_PARSE(app, argc, argv);
@@ -107,19 +147,29 @@ int main(int argc, char** argv) {
     size_t count = dataset.size();
     if (max_frames > 0) count = std::min(count, static_cast<size_t>(max_frames));
     std::vector<dynvo::RgbdFrame> frames;
-    for (size_t i = 0; i < count; ++i) frames.push_back(dataset.Load(i));
+    const dynvo::Camera camera = ScaledCamera(dataset.camera(), scale);
+    for (size_t i = 0; i < count; ++i) {
+      frames.push_back(dataset.Load(i));
+      ResizeFrame(frames.back(), camera);
+    }
     std::fprintf(stderr, "odometry_speed: %zu frames of %s (%dx%d) in memory, %d runs each\n",
-                 frames.size(), dataset.name().c_str(), dataset.camera().width,
-                 dataset.camera().height, runs);
+                 frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
 
     // dynvo
     MethodResult ours{"dynvo", {}, {}, {}};
     std::map<std::string, std::vector<double>> stage_last;
+    std::vector<double> features_total, features_removed, dynamic_ratio, inliers;  // of the last run
+    int lost_frames = 0;                                                     // of the last run
     for (int r = 0; r < runs; ++r) {
-      dynvo::OdometryPipeline pipeline(dataset.camera(), config);
+      dynvo::OdometryPipeline pipeline(camera, config);
       std::vector<double> times;
       dynvo::Trajectory trajectory;
       stage_last.clear();
+      features_total.clear();
+      features_removed.clear();
+      dynamic_ratio.clear();
+      inliers.clear();
+      lost_frames = 0;
       for (size_t i = 0; i < frames.size(); ++i) {
         const cv::Mat next = i + 1 < frames.size() ? frames[i + 1].gray : cv::Mat();
         const dynvo::FrameRecord rec = pipeline.Process(frames[i], next);
@@ -132,27 +182,44 @@ int main(int argc, char** argv) {
         stage_last["pose"].push_back(rec.times.pose_ms);
         stage_last["map"].push_back(rec.times.map_ms);
         stage_last["local_ba"].push_back(rec.times.local_ba_ms);
+        features_total.push_back(rec.features_total);
+        features_removed.push_back(rec.features_removed);
+        dynamic_ratio.push_back(rec.dynamic_ratio);
+        inliers.push_back(rec.num_inliers);
+        if (rec.state == dynvo::TrackingState::kLost) ++lost_frames;
       }
       ours.run_medians.push_back(Median(times));
       ours.last_run = times;
       ours.trajectory = trajectory;
     }
 
-    const cv::Mat K = dataset.camera().K();
-    cv::Mat K32;
-    K.convertTo(K32, CV_32F);
     std::vector<MethodResult> results = {ours};
-    results.push_back(RunPeer("opencv_rgbd_odometry", cv::rgbd::RgbdOdometry::create(K32), frames, runs));
-    results.push_back(RunPeer("opencv_icp_odometry", cv::rgbd::ICPOdometry::create(K32), frames, runs));
-    const double reference = Median(results[1].run_medians);
+    if (!no_peers) {
+      cv::Mat K32;
+      camera.K().convertTo(K32, CV_32F);
+      results.push_back(RunPeer("opencv_rgbd_odometry", cv::rgbd::RgbdOdometry::create(K32), frames, runs));
+      results.push_back(RunPeer("opencv_icp_odometry", cv::rgbd::ICPOdometry::create(K32), frames, runs));
+    }
+    // Ratios are to RgbdOdometry's median; without peers there is none (0 = not measured).
+    const double reference = no_peers ? 0.0 : Median(results[1].run_medians);
 
     nlohmann::json report;
     report["dataset"] = dataset.name();
     report["frames"] = frames.size();
     report["runs"] = runs;
     report["config"] = config_path.empty() ? "defaults" : config_path;
-    std::printf("per-frame processing time, %zu frames of %s, median over frames, median of %d runs\n",
-                frames.size(), dataset.name().c_str(), runs);
+    report["overrides"] = overrides;
+    report["scale"] = scale;
+    report["width"] = camera.width;
+    report["height"] = camera.height;
+    report["features"] = {{"num_features", config.features.num_features}};
+    report["dynvo_last_run"] = {{"features_total_mean", Mean(features_total)},
+                                {"features_removed_mean", Mean(features_removed)},
+                                {"dynamic_ratio_mean", Mean(dynamic_ratio)},
+                                {"pose_inliers_mean", Mean(inliers)},
+                                {"lost_frames", lost_frames}};
+    std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
+                frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
     std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms",
                 "ratio_to_rgbd_odo");
     for (const MethodResult& m : results) {
@@ -160,17 +227,22 @@ int main(int argc, char** argv) {
       std::sort(sorted.begin(), sorted.end());
       const double p90 = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
       const double median = Median(m.run_medians);
-      std::printf("%-22s %10.2f %10.2f %10.2f %18.2f\n", m.name.c_str(), median, Mean(m.last_run), p90,
-                  median / reference);
+      const double ratio = reference > 0 ? median / reference : 0.0;
+      std::printf("%-22s %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90,
+                  reference > 0 ? cv::format("%.2f", ratio).c_str() : "-");
       report["methods"][m.name] = {{"median_ms", median}, {"mean_ms", Mean(m.last_run)},
-                                   {"p90_ms", p90}, {"ratio_to_rgbd_odometry", median / reference},
-                                   {"run_medians_ms", m.run_medians}};
+                                   {"p90_ms", p90}, {"run_medians_ms", m.run_medians}};
+      if (reference > 0) report["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
       if (!trajectories_out.empty()) {
         std::filesystem::create_directories(trajectories_out);
         dynvo::WriteTrajectory(trajectories_out + "/" + m.name + ".txt", m.trajectory);
       }
     }
-    std::printf("\ndynvo per-stage split (last run): median_ms mean_ms\n");
+    std::printf("\ndynvo (last run): %.0f features per frame, %.1f removed, dynamic pixels %.2f%%, "
+                "%.0f pose inliers, %d frames lost\n",
+                Mean(features_total), Mean(features_removed), 100.0 * Mean(dynamic_ratio),
+                Mean(inliers), lost_frames);
+    std::printf("dynvo per-stage split (last run): median_ms mean_ms\n");
     for (const auto& [stage, values] : stage_last) {
       std::printf("  %-14s %8.3f %8.3f\n", stage.c_str(), Median(values), Mean(values));
       report["stages"][stage] = {{"median_ms", Median(values)}, {"mean_ms", Mean(values)}};

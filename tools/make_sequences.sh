@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Generates the dynamic test sequences that need no download, into one folder, and prints
+# the path of each sequence folder on stdout (one a line, in this order):
+#   synth_none_xyz                  dynvo-synth, camera path xyz, no people: the static twin
+#   synth_<scenario>_xyz            dynvo-synth, same camera path, scenarios walking_across,
+#                                   two_crossing, walking_toward, sitting_sway
+#   fr1_rpy_head150_<preset>        dynvo-insert-people into the real fr1_rpy_head150, presets
+#                                   walking_across and two_crossing (only when the project's
+#                                   shared data is present)
+# A sequence already there is kept when it is what would be generated (same scenario, camera
+# path, seed and frame count, read from its rgb.txt), else it is generated again.
+# Used by bench/accuracy.sh and tools/table1.py; they build the binaries first.
+#   bash tools/make_sequences.sh --out DIR [--frames 300] [--seed 1]
+#   (env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin; DYNVO_SHARED_DIR, default ../shared)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bin="${DYNVO_BIN_DIR:-${DYNVO_BUILD_DIR:-$root/build}/bin}"
+shared="${DYNVO_SHARED_DIR:-$root/../shared}"
+
+out=""
+frames=300
+seed=1
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --out) out="$2"; shift 2 ;;
+    --frames) frames="$2"; shift 2 ;;
+    --seed) seed="$2"; shift 2 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    *) echo "make_sequences: error: unknown argument '$1' (expected --out DIR, --frames N, --seed K)" >&2; exit 2 ;;
+  esac
+done
+[ -n "$out" ] || { echo "make_sequences: error: --out DIR is required" >&2; exit 2; }
+mkdir -p "$out"
+
+synth() {  # name scenario camera_path
+  local dir="$out/$1"
+  local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed"
+  if ! { [ -f "$dir/rgb.txt" ] && grep -qxF "$header" "$dir/rgb.txt" &&
+         [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ]; }; then
+    "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" --seed "$seed" \
+      --out "$dir" --force >&2
+  fi
+  echo "$dir"
+}
+
+synth synth_none_xyz none xyz
+for scenario in walking_across two_crossing walking_toward sitting_sway; do
+  synth "synth_${scenario}_xyz" "$scenario" xyz
+done
+
+fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"
+if [ -d "$fr1" ]; then
+  for preset in walking_across two_crossing; do
+    people="$out/fr1_rpy_head150_$preset"
+    [ -f "$people/rgb.txt" ] || "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
+      --out "$people" --force >&2
+    echo "$people"
+  done
+else
+  echo "make_sequences: $fr1 not found: no sequences with people inserted into real frames" >&2
+fi
