@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Accuracy targets of the odometry (issue 4): per-second RPE of paper and baseline modes on
+# Accuracy targets of the odometry (issue 4): per-second RPE of the paper, tuned
+# (configs/tuned.json) and baseline configs on
 #  - generated dynamic sequences, each against its twin without people (same camera path):
 #    synthetic scenes, and people inserted into the real fr1_rpy_head150 (when ../shared exists);
 #  - the real static sequences in ../shared/data/tum (paper vs baseline).
@@ -38,19 +39,24 @@ PY
 }
 
 csv="$results/accuracy.csv"
-echo "sequence,kind,twin,paper_rpe,baseline_rpe,twin_paper_rpe,paper_mask_iou,paper_ms,baseline_ms" > "$csv"
+echo "sequence,kind,twin,paper_rpe,tuned_rpe,baseline_rpe,twin_paper_rpe,twin_tuned_rpe,paper_mask_iou,tuned_mask_iou,paper_ms,baseline_ms" > "$csv"
 row() {  # name kind seq twin_seq_or_empty
   local name="$1" kind="$2" seq="$3" twin="$4"
   read -r p_rpe p_iou p_ms < <(run "$seq" paper)
+  read -r u_rpe u_iou _ < <(run "$seq" tuned)
   read -r b_rpe _ b_ms < <(run "$seq" baseline)
-  local t_rpe=""
+  local t_rpe="" tu_rpe=""
   [ -n "$twin" ] && read -r t_rpe _ _ < <(run "$twin" paper)
-  echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$b_rpe,$t_rpe,$p_iou,$p_ms,$b_ms" >> "$csv"
+  [ -n "$twin" ] && read -r tu_rpe _ _ < <(run "$twin" tuned)
+  echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$u_rpe,$b_rpe,$t_rpe,$tu_rpe,$p_iou,$u_iou,$p_ms,$b_ms" >> "$csv"
   echo "accuracy: $name done" >&2
 }
 
 for scenario in walking_across two_crossing walking_toward sitting_sway; do
   row "synth_${scenario}_xyz" "synthetic dynamic" "$sequences/synth_${scenario}_xyz" "$sequences/synth_none_xyz"
+done
+for path in rpy halfsphere; do
+  row "synth_two_crossing_$path" "synthetic dynamic" "$sequences/synth_two_crossing_$path" "$sequences/synth_none_$path"
 done
 
 fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"

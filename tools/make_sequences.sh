@@ -4,6 +4,8 @@
 #   synth_none_xyz                  dynvo-synth, camera path xyz, no people: the static twin
 #   synth_<scenario>_xyz            dynvo-synth, same camera path, scenarios walking_across,
 #                                   two_crossing, walking_toward, sitting_sway
+#   synth_{none,two_crossing}_{rpy,halfsphere}
+#                                   the other camera paths (rotation, orbit) with their twins
 #   fr1_rpy_head150_<preset>        dynvo-insert-people into the real fr1_rpy_head150, presets
 #                                   walking_across and two_crossing (only when the project's
 #                                   shared data is present)
@@ -46,6 +48,10 @@ synth() {  # name scenario camera_path
 synth synth_none_xyz none xyz
 for scenario in walking_across two_crossing walking_toward sitting_sway; do
   synth "synth_${scenario}_xyz" "$scenario" xyz
+done
+for path in rpy halfsphere; do
+  synth "synth_none_$path" none "$path"
+  synth "synth_two_crossing_$path" two_crossing "$path"
 done
 
 fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"
