@@ -381,7 +381,8 @@ def main():
             folders = sequences_here(out_dir, frames)
             sequences_note = (
                 "Sequences here: made by `tools/make_sequences.sh`: synthetic ones (%d frames,"
-                " seed 1, camera path xyz; synth_none_xyz is the same without people) and"
+                " seed 1, camera path in the name: xyz hand-held translation, rpy rotation,"
+                " halfsphere orbit; synth_none_* are the same without people) and"
                 " people inserted into the real fr1_rpy_head150 (when the project's data is"
                 " present); and the real TUM folders found (NAME_headN: the first N frames of"
                 " a TUM sequence)." % frames)
