@@ -351,7 +351,13 @@ def plot_mask_panels(path, sequence, dataset, paper_run, frames):
         block.suptitle("%s, frame %d (t = %.2f s): %s of %s ORB features removed" % (
             sequence, frame, float(row["stamp"]) - float(timing[min(timing)]["stamp"]),
             row["features_removed"], row["features_total"]), fontsize=13)
-    fig.savefig(path, dpi=100)
+    fig.savefig(path, dpi=80)
+    # Photographic tiles compress poorly as true colour: a 256-colour palette keeps the
+    # committed figure near 300 KB instead of 1.5 MB, with no visible loss at this size.
+    from PIL import Image
+    with Image.open(path) as image:
+        palette = image.convert("RGB").quantize(colors=256, method=Image.Quantize.MEDIANCUT)
+    palette.save(path, optimize=True)
     plt.close(fig)
 
 
