@@ -2,7 +2,8 @@
 // (cv::rgbd::RgbdOdometry, cv::rgbd::ICPOdometry) on the same frames, in the same process.
 // Frames are decoded into memory first, so only processing is timed (as in the paper and
 // ORB-SLAM2's reports). Prints medians over frames, the median over runs, the ratio to
-// RgbdOdometry and the per-stage split of our pipeline. --scale resizes the frames in memory
+// RgbdOdometry (each dynvo run is followed by one run of each peer; the ratio is the median over
+// runs of the run's ratio) and the per-stage split of our pipeline. --scale resizes the frames in memory
 // (and the intrinsics with them) to measure how the cost grows with resolution; --set
 // overrides config keys (e.g. features.num_features) to measure it against other parameters.
 //
@@ -55,6 +56,13 @@ struct MethodResult {
   dynvo::Trajectory trajectory;     // of the last run
 };
 
+// Adds the runs of `more` to `into` (medians appended, last run and trajectory replaced).
+void AppendRun(MethodResult* into, const MethodResult& more) {
+  into->run_medians.insert(into->run_medians.end(), more.run_medians.begin(), more.run_medians.end());
+  into->last_run = more.last_run;
+  into->trajectory = more.trajectory;
+}
+
 // Runs an OpenCV odometry frame to frame, chaining the relative motions.
 MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>& odometry,
                      const std::vector<dynvo::RgbdFrame>& frames, int runs) {
@@ -86,6 +94,18 @@ MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>&
     result.trajectory = trajectory;
   }
   return result;
+}
+
+// The image area of frames of `camera` resized to `scaled`'s size (pixel centres scale about
+// the image corner, as for the principal point).
+dynvo::ImageArea ScaledArea(const dynvo::ImageArea& area, const dynvo::Camera& camera,
+                            const dynvo::Camera& scaled) {
+  dynvo::ImageArea out;
+  const double sx = static_cast<double>(scaled.width) / camera.width;
+  const double sy = static_cast<double>(scaled.height) / camera.height;
+  for (const cv::Point2f& p : area)
+    out.emplace_back(static_cast<float>((p.x + 0.5) * sx - 0.5), static_cast<float>((p.y + 0.5) * sy - 0.5));
+  return out;
 }
 
 // The camera of images resized by `scale`: focal lengths scale, and the principal point
@@ -148,6 +168,7 @@ int main(int argc, char** argv) {
     if (max_frames > 0) count = std::min(count, static_cast<size_t>(max_frames));
     std::vector<dynvo::RgbdFrame> frames;
     const dynvo::Camera camera = ScaledCamera(dataset.camera(), scale);
+    const dynvo::ImageArea area = ScaledArea(dataset.image_area(), dataset.camera(), camera);
     for (size_t i = 0; i < count; ++i) {
       frames.push_back(dataset.Load(i));
       ResizeFrame(frames.back(), camera);
@@ -155,13 +176,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "odometry_speed: %zu frames of %s (%dx%d) in memory, %d runs each\n",
                  frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
 
-    // dynvo
+    // Each run of dynvo is followed by one run of each peer on the same frames, so that the
+    // ratio of a run compares methods timed within seconds of each other on this shared machine.
     MethodResult ours{"dynvo", {}, {}, {}};
+    MethodResult rgbd{"opencv_rgbd_odometry", {}, {}, {}}, icp{"opencv_icp_odometry", {}, {}, {}};
+    cv::Ptr<cv::rgbd::Odometry> rgbd_odometry, icp_odometry;
+    if (!no_peers) {
+      cv::Mat K32;
+      camera.K().convertTo(K32, CV_32F);
+      rgbd_odometry = cv::rgbd::RgbdOdometry::create(K32);
+      icp_odometry = cv::rgbd::ICPOdometry::create(K32);
+    }
     std::map<std::string, std::vector<double>> stage_last;
     std::vector<double> features_total, features_removed, dynamic_ratio, inliers;  // of the last run
     int lost_frames = 0;                                                     // of the last run
     for (int r = 0; r < runs; ++r) {
-      dynvo::OdometryPipeline pipeline(camera, config);
+      dynvo::OdometryPipeline pipeline(camera, config, area);
       std::vector<double> times;
       dynvo::Trajectory trajectory;
       stage_last.clear();
@@ -191,17 +221,19 @@ int main(int argc, char** argv) {
       ours.run_medians.push_back(Median(times));
       ours.last_run = times;
       ours.trajectory = trajectory;
+      if (!no_peers) {
+        AppendRun(&rgbd, RunPeer(rgbd.name, rgbd_odometry, frames, 1));
+        AppendRun(&icp, RunPeer(icp.name, icp_odometry, frames, 1));
+      }
     }
 
     std::vector<MethodResult> results = {ours};
     if (!no_peers) {
-      cv::Mat K32;
-      camera.K().convertTo(K32, CV_32F);
-      results.push_back(RunPeer("opencv_rgbd_odometry", cv::rgbd::RgbdOdometry::create(K32), frames, runs));
-      results.push_back(RunPeer("opencv_icp_odometry", cv::rgbd::ICPOdometry::create(K32), frames, runs));
+      results.push_back(rgbd);
+      results.push_back(icp);
     }
-    // Ratios are to RgbdOdometry's median; without peers there is none (0 = not measured).
-    const double reference = no_peers ? 0.0 : Median(results[1].run_medians);
+    // Ratio to RgbdOdometry: median over runs of the run's ratio (0 = not measured).
+    const double reference = no_peers ? 0.0 : Median(rgbd.run_medians);
 
     nlohmann::json report;
     report["dataset"] = dataset.name();
@@ -221,18 +253,24 @@ int main(int argc, char** argv) {
     std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
                 frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
     std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms",
-                "ratio_to_rgbd_odo");
+                "ratio_to_rgbd_odo");  // ratio: median over runs of the run's ratio
     for (const MethodResult& m : results) {
       std::vector<double> sorted = m.last_run;
       std::sort(sorted.begin(), sorted.end());
       const double p90 = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
       const double median = Median(m.run_medians);
-      const double ratio = reference > 0 ? median / reference : 0.0;
+      std::vector<double> ratios;
+      for (size_t r = 0; r < rgbd.run_medians.size() && r < m.run_medians.size(); ++r)
+        ratios.push_back(m.run_medians[r] / rgbd.run_medians[r]);
+      const double ratio = reference > 0 ? Median(ratios) : 0.0;
       std::printf("%-22s %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90,
                   reference > 0 ? cv::format("%.2f", ratio).c_str() : "-");
       report["methods"][m.name] = {{"median_ms", median}, {"mean_ms", Mean(m.last_run)},
                                    {"p90_ms", p90}, {"run_medians_ms", m.run_medians}};
-      if (reference > 0) report["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
+      if (reference > 0) {
+        report["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
+        report["methods"][m.name]["run_ratios_to_rgbd_odometry"] = ratios;
+      }
       if (!trajectories_out.empty()) {
         std::filesystem::create_directories(trajectories_out);
         dynvo::WriteTrajectory(trajectories_out + "/" + m.name + ".txt", m.trajectory);

@@ -123,7 +123,8 @@ def sequences_here(out_dir, frames):
 
 
 def run_is_finished(run_dir, sequence, config):
-    """True when run_dir holds a completed run of this sequence and config, newer than it."""
+    """True when run_dir holds a completed run of this sequence and config, newer than both and
+    than the dynvo-cli binary (a rebuilt binary may give other results)."""
     try:
         with open(os.path.join(run_dir, "run.json")) as f:
             info = json.load(f)
@@ -132,7 +133,8 @@ def run_is_finished(run_dir, sequence, config):
                 and os.path.realpath(info["config_file"]) == os.path.realpath(config)
                 and os.path.isfile(os.path.join(run_dir, "trajectory.txt"))
                 and os.path.getmtime(os.path.join(run_dir, "run.json"))
-                >= os.path.getmtime(os.path.join(sequence, "rgb.txt")))
+                >= max(os.path.getmtime(os.path.join(sequence, "rgb.txt")), os.path.getmtime(config),
+                       os.path.getmtime(os.path.join(BIN_DIR, "dynvo-cli"))))
     except (OSError, ValueError, KeyError, TypeError):
         return False
 

@@ -101,6 +101,11 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
     cv::convertMaps(map_x, map_y, linear_map1_, linear_map2_, CV_16SC2, false);
     cv::Mat unused;
     cv::convertMaps(map_x, map_y, nearest_map_, unused, CV_16SC2, true);
+    // Pixels whose bilinear sample lies wholly inside the sensor image.
+    cv::Mat covered;
+    cv::remap(cv::Mat(size, CV_8UC1, cv::Scalar(255)), covered, linear_map1_, linear_map2_, cv::INTER_LINEAR,
+              cv::BORDER_CONSTANT, cv::Scalar(0));
+    image_area_ = ConvexAreaInside(covered == 255);
   }
 
   // RGB-depth association, associate.py semantics.
@@ -143,6 +148,8 @@ double TumDataset::stamp(size_t i) const { return rgb_[frames_.at(i).rgb].stamp;
 const Camera& TumDataset::camera() const { return camera_; }
 
 const Camera& TumDataset::raw_camera() const { return raw_camera_; }
+
+const ImageArea& TumDataset::image_area() const { return image_area_; }
 
 double TumDataset::depth_factor() const { return depth_factor_; }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/image_area.h"
 #include "dataset/image_list.h"
 #include "dataset/trajectory_io.h"
 
@@ -52,6 +53,9 @@ class TumDataset {
   const Camera& camera() const;
   // The sensor's camera, with its distortion.
   const Camera& raw_camera() const;
+  // The convex part of every image Load() returns that holds image data: without the black
+  // border undistortion leaves (empty = the whole image, when there is no undistortion).
+  const ImageArea& image_area() const;
   // PNG value per metre used for depth (camera.json "depth_factor" or the option).
   double depth_factor() const;
 
@@ -97,6 +101,7 @@ class TumDataset {
   Camera camera_;
   double depth_factor_ = 5000.0;
   bool remap_ = false;
+  ImageArea image_area_;
   cv::Mat linear_map1_, linear_map2_;  // CV_16SC2 + CV_16UC1 fixed-point maps, bilinear
   cv::Mat nearest_map_;                // CV_16SC2 rounded map, nearest neighbour
   std::vector<ImageListEntry> rgb_, depth_, masks_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -28,8 +29,8 @@ struct DirectionWork {
 
 // |target - warp(source)| over the valid pixels, binarised and cleaned, in the target frame.
 void DetectDirection(const cv::Mat& source, const cv::Mat& target, const Eigen::Matrix3d& target_from_source,
-                     const DynamicMaskOptions& options, DirectionWork* work) {
-  CompensateMotion(source, target_from_source, target.size(), &work->compensated);
+                     const ImageArea& area, const DynamicMaskOptions& options, DirectionWork* work) {
+  CompensateMotion(source, target_from_source, target.size(), &work->compensated, area);
   AbsoluteDifference(target, work->compensated.image, work->compensated.valid, &work->difference);
   work->threshold = DifferenceThreshold(work->difference, work->compensated.valid, options);
   Binarize(work->difference, work->threshold, &work->binary);
@@ -171,6 +172,7 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
   const cv::Mat previous_level = LevelImage(input.previous_gray, previous_pyramid, level);
   const cv::Mat current_level = LevelImage(input.current_gray, current_pyramid, level);
   const DynamicMaskOptions level_options = OptionsAtLevel(options, level);
+  const ImageArea area = ScaleArea(input.image_area, 1.0 / static_cast<double>(1 << level));
   result.num_tracks = static_cast<int>(forward_tracks.current.size());
   if (options.backward == BackwardMode::kTriplet && !use_next) result.backward_failure = "no next frame";
 
@@ -194,8 +196,13 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
     if (round > 1 && CornerChange(h_forward.current_from_previous, result.current_from_previous, size) <
                          options.rounds_min_change_px)
       break;
-    DetectDirection(previous_level, current_level, AtLevel(h_forward.current_from_previous, level), level_options,
-                    &forward);
+    // The forward direction runs on a second thread while this one does the backward one; they
+    // share only read-only inputs, so the result is the same as in sequence.
+    const auto policy = options.backward == BackwardMode::kNone ? std::launch::deferred : std::launch::async;
+    std::future<void> forward_done = std::async(policy, [&] {
+      DetectDirection(previous_level, current_level, AtLevel(h_forward.current_from_previous, level), area,
+                      level_options, &forward);
+    });
 
     // Step 4 backward, in frame t coordinates.
     cv::Mat backward_mask;
@@ -209,26 +216,24 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
       if (round == 1 || CornerChange(previous_from_current, backward_previous_from_current, size) >=
                             options.rounds_min_change_px) {
         const Eigen::Matrix3d previous_from_current_level = AtLevel(previous_from_current, level);
-        DetectDirection(current_level, previous_level, previous_from_current_level, level_options, &backward);
-        const Eigen::Matrix3d current_from_previous_level = previous_from_current_level.inverse();
-        cv::Matx33d m;
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) m(r, c) = current_from_previous_level(r, c);
-        cv::warpPerspective(backward.binary, backward_in_current, m, current_level.size(), cv::INTER_NEAREST,
-                            cv::BORDER_CONSTANT, cv::Scalar(0));
+        DetectDirection(current_level, previous_level, previous_from_current_level, area, level_options, &backward);
+        WarpBinaryMask(backward.binary, previous_from_current_level.inverse(), current_level.size(),
+                       &backward_in_current);
         backward_previous_from_current = previous_from_current;
       }
       backward_mask = backward_in_current;
     } else if (use_next) {
       const HomographyEstimate h_next = EstimateHomography(static_next.previous, static_next.current, homography);
       if (h_next.ok) {
-        DetectDirection(next_level, current_level, AtLevel(h_next.current_from_previous, level), level_options,
-                        &backward);
+        DetectDirection(next_level, current_level, AtLevel(h_next.current_from_previous, level), area,
+                        level_options, &backward);
         backward_mask = backward.binary;
       } else {
         backward_failure = "next frame: " + h_next.failure;
       }
     }
+
+    forward_done.get();
 
     // Union of the two directions, at full size.
     cv::Mat fused;

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "core/image_area.h"
 #include "dynamic_mask/dynamic_mask_options.h"
 #include "ego_motion/homography.h"
 #include "ego_motion/klt_tracker.h"
@@ -24,6 +25,9 @@ struct DynamicMaskInput {
   // Optional tracks t-1 -> t (previous = frame t-1 point, current = frame t point), e.g. the last
   // call's DynamicMaskResult::next_tracks under kTriplet; when given, t is not tracked into t-1 again.
   PointTracks previous_tracks;
+  // The part of every frame with image data (e.g. without the black border of undistortion); pixels
+  // outside it in either frame of a difference are never dynamic. Empty = the whole image.
+  ImageArea image_area;
 };
 
 struct DynamicMaskResult {

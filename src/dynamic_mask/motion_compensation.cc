@@ -1,6 +1,6 @@
 #include "dynamic_mask/motion_compensation.h"
 
-#include <array>
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -18,59 +18,105 @@ cv::Matx33d ToCv(const Eigen::Matrix3d& h) {
   return m;
 }
 
+// The target pixels that `source_box` (a rectangle of source pixels) can reach through H
+// (target_from_source) with nearest-neighbour sampling, clipped to `size`; false when part of the
+// box maps through infinity.
+bool TargetBoxOf(const cv::Rect& source_box, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
+                 cv::Rect* target_box) {
+  // A target pixel takes the nearest source pixel, so sources up to 0.5 px outside the box count;
+  // one more pixel of margin covers rounding.
+  const double x0 = source_box.x - 1.0, y0 = source_box.y - 1.0;
+  const double x1 = source_box.x + source_box.width, y1 = source_box.y + source_box.height;
+  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+  for (const Eigen::Vector3d& corner : {Eigen::Vector3d(x0, y0, 1), Eigen::Vector3d(x1, y0, 1),
+                                        Eigen::Vector3d(x0, y1, 1), Eigen::Vector3d(x1, y1, 1)}) {
+    const Eigen::Vector3d q = target_from_source * corner;
+    if (!(q.z() > 1e-12)) return false;
+    const double x = q.x() / q.z(), y = q.y() / q.z();
+    if (!(std::abs(x) < 1e6 && std::abs(y) < 1e6)) return false;
+    min_x = std::min(min_x, x);
+    min_y = std::min(min_y, y);
+    max_x = std::max(max_x, x);
+    max_y = std::max(max_y, y);
+  }
+  const int left = std::max(0, static_cast<int>(std::floor(min_x)) - 1);
+  const int top = std::max(0, static_cast<int>(std::floor(min_y)) - 1);
+  const int right = std::min(size.width, static_cast<int>(std::ceil(max_x)) + 2);
+  const int bottom = std::min(size.height, static_cast<int>(std::ceil(max_y)) + 2);
+  *target_box = cv::Rect(left, top, std::max(0, right - left), std::max(0, bottom - top));
+  return true;
+}
+
 }  // namespace
 
+void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
+                    cv::Mat* warped) {
+  if (mask.empty() || mask.type() != CV_8UC1) throw InputError("WarpBinaryMask needs a non-empty CV_8UC1 mask");
+  if (!target_from_source.allFinite()) throw InputError("WarpBinaryMask: homography is not finite");
+  const cv::Rect source_box = cv::boundingRect(mask);  // of the non-zero pixels
+  cv::Rect target_box;
+  if (source_box.area() > 0 && !TargetBoxOf(source_box, target_from_source, size, &target_box)) {
+    cv::warpPerspective(mask, *warped, ToCv(target_from_source), size, cv::INTER_NEAREST, cv::BORDER_CONSTANT,
+                        cv::Scalar(0));
+    return;
+  }
+  warped->create(size, CV_8UC1);
+  warped->setTo(0);
+  if (source_box.area() == 0 || target_box.area() == 0) return;
+  // Warp into the box alone: its pixel (u, v) is the target pixel (u + left, v + top).
+  Eigen::Matrix3d box_from_target = Eigen::Matrix3d::Identity();
+  box_from_target(0, 2) = -target_box.x;
+  box_from_target(1, 2) = -target_box.y;
+  cv::Mat box = (*warped)(target_box);
+  cv::warpPerspective(mask, box, ToCv(box_from_target * target_from_source), target_box.size(), cv::INTER_NEAREST,
+                      cv::BORDER_CONSTANT, cv::Scalar(0));
+}
+
 void ValidRegion(const Eigen::Matrix3d& target_from_source, const cv::Size& source_size, const cv::Size& size,
-                 cv::Mat* valid) {
+                 cv::Mat* valid, const ImageArea& area) {
   valid->create(size, CV_8UC1);
   valid->setTo(0);
   if (source_size.area() == 0 || !target_from_source.allFinite()) return;
-  // The source pixel centres span [0, w-1] x [0, h-1]; a homography that keeps that rectangle in
-  // front of the camera maps it to a convex quadrilateral, which is rasterised directly.
+  // The source pixel centres span [0, w-1] x [0, h-1] (or the convex `area`); a homography that
+  // keeps that polygon in front of the camera maps it to a convex polygon, rasterised directly.
   const double w = source_size.width - 1.0, h = source_size.height - 1.0;
-  const std::array<Eigen::Vector3d, 4> corners = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(w, 0, 1),
-                                                  Eigen::Vector3d(w, h, 1), Eigen::Vector3d(0, h, 1)};
-  constexpr int kShift = 4;  // sub-pixel bits of the polygon vertices
-  std::array<cv::Point, 4> polygon;
-  bool in_front = true;
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector3d q = target_from_source * corners[k];
-    if (!(q.z() > 1e-12)) {
-      in_front = false;
-      break;
-    }
+  const ImageArea source_polygon =
+      area.empty() ? ImageArea{{0.0f, 0.0f}, {static_cast<float>(w), 0.0f}, {static_cast<float>(w), static_cast<float>(h)},
+                               {0.0f, static_cast<float>(h)}}
+                   : area;
+  ImageArea polygon;
+  polygon.reserve(source_polygon.size());
+  for (const cv::Point2f& corner : source_polygon) {
+    const Eigen::Vector3d q = target_from_source * Eigen::Vector3d(corner.x, corner.y, 1.0);
+    if (!(q.z() > 1e-12)) break;
     const double x = q.x() / q.z(), y = q.y() / q.z();
-    if (!(std::abs(x) < 1e6 && std::abs(y) < 1e6)) {
-      in_front = false;
-      break;
-    }
-    polygon[k] = cv::Point(static_cast<int>(std::lround(x * (1 << kShift))),
-                           static_cast<int>(std::lround(y * (1 << kShift))));
+    if (!(std::abs(x) < 1e6 && std::abs(y) < 1e6)) break;
+    polygon.emplace_back(static_cast<float>(x), static_cast<float>(y));
   }
-  if (in_front) {
-    cv::fillConvexPoly(*valid, polygon.data(), 4, cv::Scalar(255), cv::LINE_8, kShift);
-    return;
+  if (polygon.size() == source_polygon.size()) {
+    *valid = AreaMask(polygon, size);
+  } else {
+    // Part of the source maps through infinity: fall back to warping the source's valid pixels.
+    cv::warpPerspective(AreaMask(area, source_size), *valid, ToCv(target_from_source), size, cv::INTER_NEAREST,
+                        cv::BORDER_CONSTANT, cv::Scalar(0));
   }
-  // Part of the source maps through infinity: fall back to warping an all-valid image.
-  const cv::Mat ones(source_size, CV_8UC1, cv::Scalar(255));
-  cv::warpPerspective(ones, *valid, ToCv(target_from_source), size, cv::INTER_NEAREST, cv::BORDER_CONSTANT,
-                      cv::Scalar(0));
+  if (!area.empty()) cv::bitwise_and(*valid, AreaMask(area, size), *valid);
 }
 
 void CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
-                      CompensatedImage* out) {
+                      CompensatedImage* out, const ImageArea& area) {
   if (source.empty()) throw InputError("CompensateMotion: source image is empty");
   if (size.width <= 0 || size.height <= 0) throw InputError("CompensateMotion: target size must be positive");
   if (!target_from_source.allFinite()) throw InputError("CompensateMotion: homography is not finite");
   // Border replication keeps the bilinear samples at the valid region's edge free of black.
   cv::warpPerspective(source, out->image, ToCv(target_from_source), size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-  ValidRegion(target_from_source, source.size(), size, &out->valid);
+  ValidRegion(target_from_source, source.size(), size, &out->valid, area);
 }
 
 CompensatedImage CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source,
-                                  const cv::Size& size) {
+                                  const cv::Size& size, const ImageArea& area) {
   CompensatedImage out;
-  CompensateMotion(source, target_from_source, size, &out);
+  CompensateMotion(source, target_from_source, size, &out, area);
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "core/image_area.h"
+
 namespace dynvo {
 
 struct CompensatedImage {
@@ -14,16 +16,24 @@ struct CompensatedImage {
 
 // Warps `source` by `target_from_source` (x_target ~ H x_source) into an image of `size`.
 // Pixels whose source location falls outside `source` are marked invalid (their image value
-// is meaningless). Writes into `out`, reusing its buffers when they fit.
+// is meaningless), and so are those outside `area` in either image (the part of both frames
+// with image data; empty = all of it). Writes into `out`, reusing its buffers when they fit.
 void CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
-                      CompensatedImage* out);
+                      CompensatedImage* out, const ImageArea& area = {});
 
 // Same, returning fresh buffers.
 CompensatedImage CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source,
-                                  const cv::Size& size);
+                                  const cv::Size& size, const ImageArea& area = {});
 
-// CV_8UC1 mask of `size`: 255 on the pixels x with H^-1 x inside a `source_size` image (H = target_from_source).
+// A CV_8UC1 binary `mask` warped by `target_from_source` into an image of `size` (nearest
+// neighbour, 0 where there is no source). The same result as a full cv::warpPerspective, computed
+// only over the part of the target that the mask's non-zero pixels can reach.
+void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
+                    cv::Mat* warped);
+
+// CV_8UC1 mask of `size`: 255 on the pixels x with H^-1 x inside a `source_size` image (H =
+// target_from_source) and inside `area` there, and x inside `area` too (empty `area` = whole images).
 void ValidRegion(const Eigen::Matrix3d& target_from_source, const cv::Size& source_size, const cv::Size& size,
-                 cv::Mat* valid);
+                 cv::Mat* valid, const ImageArea& area = {});
 
 }  // namespace dynvo

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 
+#include "pose/rotation_jacobian.h"
+
 namespace dynvo {
 
 RgbdReprojectionCost::RgbdReprojectionCost(const Eigen::Vector2d& observed, double depth,
@@ -14,11 +16,7 @@ bool RgbdReprojectionCost::Evaluate(double const* const* parameters, double* res
   const double* q = parameters[0];  // x y z w
   const Eigen::Map<const Eigen::Vector3d> t(parameters[1]);
   const Eigen::Map<const Eigen::Vector3d> x(parameters[2]);
-  // Rotation of a unit quaternion: R x = x + 2 w (u x x) + 2 u x (u x x), u = (qx, qy, qz).
-  const Eigen::Vector3d u(q[0], q[1], q[2]);
-  const double w = q[3];
-  const Eigen::Vector3d uxx = u.cross(x);
-  const Eigen::Vector3d p = x + 2.0 * w * uxx + 2.0 * u.cross(uxx) + t;
+  const Eigen::Vector3d p = RotatePoint(q, x) + t;
 
   if (p.z() < 1e-6) {
     residuals[0] = residuals[1] = residuals[2] = 1e3;
@@ -49,23 +47,15 @@ bool RgbdReprojectionCost::Evaluate(double const* const* parameters, double* res
   using RowMajor34 = Eigen::Matrix<double, 3, 4, Eigen::RowMajor>;
   using RowMajor33 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
   if (jacobians[0] != nullptr) {
-    // d(R x)/du = -2 w [x]_x + 2 (u x^T + (u . x) I - 2 x u^T),  d(R x)/dw = 2 (u x x).
-    Eigen::Matrix3d skew_x;
-    skew_x << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-    Eigen::Matrix<double, 3, 4> dp_dq;
-    dp_dq.leftCols<3>() = -2.0 * w * skew_x +
-                          2.0 * (u * x.transpose() + u.dot(x) * Eigen::Matrix3d::Identity() -
-                                 2.0 * x * u.transpose());
-    dp_dq.col(3) = 2.0 * uxx;
     Eigen::Map<RowMajor34> j_q(jacobians[0]);
-    j_q = dr_dp * dp_dq;
+    j_q = dr_dp * RotatedPointJacobian(q, x);
   }
   if (jacobians[1] != nullptr) {
     Eigen::Map<RowMajor33> j_t(jacobians[1]);
     j_t = dr_dp;
   }
   if (jacobians[2] != nullptr) {
-    const Eigen::Quaterniond rotation(w, q[0], q[1], q[2]);
+    const Eigen::Quaterniond rotation(q[3], q[0], q[1], q[2]);
     Eigen::Map<RowMajor33> j_x(jacobians[2]);
     j_x = dr_dp * rotation.toRotationMatrix();
   }

@@ -34,9 +34,10 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split) {
 
 }  // namespace
 
-OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config)
+OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area)
     : camera_(camera),
       config_(config),
+      image_area_(image_area),
       extractor_(config.features),
       tracker_(camera, config.tracker) {}
 
@@ -78,6 +79,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
       input.previous_gray = previous_gray_;
       input.current_gray = frame.gray;
       input.previous_pyramid = previous_pyramid_;
+      input.image_area = image_area_;
       // Frame t's pyramid was built last call when frame t came as the triplet's next frame.
       input.current_pyramid = SameImage(next_gray_, frame.gray) ? next_pyramid_
                                                                 : BuildTrackingPyramid(frame.gray, config_.klt);

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/camera.h"
+#include "core/image_area.h"
 #include "dataset/tum_dataset.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_extractor.h"
@@ -31,8 +32,9 @@ struct DebugPanels {
 class OdometryPipeline {
  public:
   // `camera` is the camera of the images passed to Process (undistorted when the reader
-  // undistorts). The config must have passed Check().
-  OdometryPipeline(const Camera& camera, const OdometryConfig& config);
+  // undistorts); `image_area` the part of them with image data (TumDataset::image_area(); empty =
+  // all). The config must have passed Check().
+  OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area = {});
 
   // Processes frame t and returns its record (pose always set). `next_gray` is frame t+1,
   // used only with backward detection "triplet" (empty at the end of the sequence).
@@ -48,6 +50,7 @@ class OdometryPipeline {
  private:
   Camera camera_;
   OdometryConfig config_;
+  ImageArea image_area_;
   FeatureExtractor extractor_;
   FrameTracker tracker_;
   cv::Mat previous_gray_;

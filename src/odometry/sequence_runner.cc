@@ -127,7 +127,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                        {"timing", (out / "timing.csv").string()}};
 
   const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
-  OdometryPipeline pipeline(dataset.camera(), config);
+  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area());
   FrameLoader loader(dataset, count, evaluate_masks, config.run.preload);
   TimingCsvWriter timing((out / "timing.csv").string());
   std::ofstream trajectory((out / "trajectory.txt").string(), std::ios::trunc);

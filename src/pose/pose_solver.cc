@@ -12,7 +12,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "core/error.h"
-#include "pose/reprojection_error.h"
+#include "pose/pose_reprojection_cost.h"
 
 namespace dynvo {
 
@@ -244,8 +244,8 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
     for (size_t i = 0; i < n; ++i) {
       if (!active[i]) continue;
       if (!costs[i])
-        costs[i].reset(PoseReprojectionError::Create(pixels[i], points_in_world[i], camera.fx,
-                                                     camera.fy, camera.cx, camera.cy));
+        costs[i] = std::make_unique<PoseReprojectionCost>(pixels[i], points_in_world[i], camera.fx,
+                                                          camera.fy, camera.cx, camera.cy);
       problem.AddResidualBlock(costs[i].get(), &huber, q_xyzw, t);
     }
     problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);

@@ -351,11 +351,25 @@ TEST(TumDataset, UndistortionMovesPixelsWherePredicted) {
     }
   EXPECT_EQ(cv::countNonZero(frame_mask == 255) + cv::countNonZero(frame_mask == 0), 640 * 480);
 
+  // The image area excludes the border the remap leaves without sensor pixels.
+  const ImageArea& area = dataset.image_area();
+  ASSERT_GE(area.size(), 3u);
+  const cv::Mat inside = AreaMask(area, frame.gray.size());
+  EXPECT_LT(cv::countNonZero(inside), 640 * 480 - 1000) << "fr1's border is thicker than that";
+  EXPECT_GT(cv::countNonZero(inside), 640 * 480 * 9 / 10);
+  EXPECT_EQ(inside.at<uchar>(240, 320), 255);
+  EXPECT_EQ(inside.at<uchar>(0, 0), 0);
+  EXPECT_EQ(frame.depth.at<float>(0, 0), 0.0f);  // no sensor pixel maps to the corner
+  cv::Mat zero_depth_inside;
+  cv::bitwise_and(inside, frame.depth == 0.0f, zero_depth_inside);
+  EXPECT_EQ(cv::countNonZero(zero_depth_inside), 0);  // depth (1 m everywhere) is defined inside
+
   // With undistortion off, images are as stored and the camera keeps its distortion.
   TumDatasetOptions raw;
   raw.undistort = false;
   const TumDataset raw_dataset(seq.folder, raw);
   EXPECT_TRUE(raw_dataset.camera().HasDistortion());
+  EXPECT_TRUE(raw_dataset.image_area().empty());
   EXPECT_EQ(raw_dataset.Load(0).gray.at<uchar>(source_px), 255);
   EXPECT_EQ(raw_dataset.LoadMask(0).at<uchar>(source_px), 255);
 }

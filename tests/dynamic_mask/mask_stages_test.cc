@@ -1,6 +1,7 @@
 // The small stages of the detector, each alone: compensation, difference, threshold, morphology, regions.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -59,6 +60,49 @@ TEST(CompensateMotion, RotationValidRegionMatchesThePreimageTest) {
     }
   // Only the rasterised edge of the quadrilateral may disagree: at most ~1 px along its perimeter.
   EXPECT_LT(wrong, 2 * (kImage.width + kImage.height));
+}
+
+TEST(CompensateMotion, ValidRegionStaysInsideTheImageAreaOfBothFrames) {
+  const cv::Mat source = test::RandomTexture(kImage, 3);
+  const Eigen::Matrix3d h = test::SmallMotion(0.03, 20.0, -10.0, 1e-5, 0.0);
+  const ImageArea area = {{30, 20}, {610, 25}, {620, 300}, {600, 460}, {25, 450}, {15, 200}};
+  const CompensatedImage out = CompensateMotion(source, h, kImage, area);
+  const Eigen::Matrix3d inverse = h.inverse();
+  const cv::Mat in_area = AreaMask(area, kImage);
+  int outside = 0, inside = 0;
+  for (int y = 0; y < kImage.height; ++y)
+    for (int x = 0; x < kImage.width; ++x) {
+      const Eigen::Vector2d s = test::Transfer(inverse, Eigen::Vector2d(x, y));
+      const int sx = static_cast<int>(std::lround(s.x())), sy = static_cast<int>(std::lround(s.y()));
+      const bool source_in_area = sx >= 0 && sy >= 0 && sx < kImage.width && sy < kImage.height &&
+                                  in_area.at<uint8_t>(sy, sx) != 0;
+      const bool expected = source_in_area && in_area.at<uint8_t>(y, x) != 0;
+      const bool valid = out.valid.at<uint8_t>(y, x) != 0;
+      outside += valid && !expected;
+      inside += valid;
+    }
+  // Only the rasterised edge of the mapped polygon may disagree (about a pixel along it).
+  EXPECT_LT(outside, 2 * (kImage.width + kImage.height));
+  EXPECT_GT(inside, kImage.area() * 7 / 10);
+}
+
+TEST(WarpBinaryMask, EqualsAFullNearestWarp) {
+  cv::RNG rng(17);
+  for (int trial = 0; trial < 60; ++trial) {
+    cv::Mat mask = cv::Mat::zeros(kImage, CV_8UC1);
+    for (int b = 0; b < trial % 4; ++b)
+      cv::rectangle(mask, cv::Rect(rng.uniform(0, 640), rng.uniform(0, 480), rng.uniform(5, 80), rng.uniform(5, 80)),
+                    cv::Scalar(255), cv::FILLED);
+    if (trial % 7 == 0) mask.row(0).setTo(255);  // a mask touching the image border
+    const Eigen::Matrix3d h =
+        test::SmallMotion(rng.gaussian(0.03), rng.gaussian(15.0), rng.gaussian(15.0), rng.gaussian(2e-5), 0.0);
+    cv::Mat full, fast;
+    cv::warpPerspective(mask, full, test::ToMatx(h), kImage, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+    WarpBinaryMask(mask, h, kImage, &fast);
+    ASSERT_EQ(CountDifferent(full, fast), 0) << "trial " << trial;
+  }
+  cv::Mat out;
+  EXPECT_THROW(WarpBinaryMask(cv::Mat(), Eigen::Matrix3d::Identity(), kImage, &out), InputError);
 }
 
 TEST(AbsoluteDifference, IsZeroOutsideValid) {
