@@ -56,11 +56,19 @@ ImageArea ScaleArea(const ImageArea& area, double scale) {
   return scaled;
 }
 
-cv::Mat AreaMask(const ImageArea& area, const cv::Size& size) {
-  if (area.empty()) return cv::Mat(size, CV_8UC1, cv::Scalar(255));
-  cv::Mat mask = cv::Mat::zeros(size, CV_8UC1);
+void FillArea(const ImageArea& area, cv::Mat* mask) {
+  if (mask == nullptr || mask->type() != CV_8UC1) throw InputError("FillArea needs a CV_8UC1 mask");
+  if (area.empty()) {
+    mask->setTo(255);
+    return;
+  }
   const std::vector<cv::Point> points = FixedPoint(area);
-  cv::fillConvexPoly(mask, points.data(), static_cast<int>(points.size()), cv::Scalar(255), cv::LINE_8, kShift);
+  cv::fillConvexPoly(*mask, points.data(), static_cast<int>(points.size()), cv::Scalar(255), cv::LINE_8, kShift);
+}
+
+cv::Mat AreaMask(const ImageArea& area, const cv::Size& size) {
+  cv::Mat mask = cv::Mat::zeros(size, CV_8UC1);
+  FillArea(area, &mask);
   return mask;
 }
 

@@ -23,6 +23,10 @@ ImageArea ConvexAreaInside(const cv::Mat& valid);
 // `area` in the coordinates of an image scaled by `scale` (x' = scale * x); empty stays empty.
 ImageArea ScaleArea(const ImageArea& area, double scale);
 
+// Sets the pixels of the CV_8UC1 `mask` inside `area` to 255 (every pixel when `area` is empty);
+// the others keep their value.
+void FillArea(const ImageArea& area, cv::Mat* mask);
+
 // CV_8UC1 image of `size`: 255 inside `area` (every pixel when `area` is empty), 0 outside.
 cv::Mat AreaMask(const ImageArea& area, const cv::Size& size);
 

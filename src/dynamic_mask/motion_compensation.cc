@@ -94,12 +94,19 @@ void ValidRegion(const Eigen::Matrix3d& target_from_source, const cv::Size& sour
     polygon.emplace_back(static_cast<float>(x), static_cast<float>(y));
   }
   if (polygon.size() == source_polygon.size()) {
-    *valid = AreaMask(polygon, size);
-  } else {
-    // Part of the source maps through infinity: fall back to warping the source's valid pixels.
-    cv::warpPerspective(AreaMask(area, source_size), *valid, ToCv(target_from_source), size, cv::INTER_NEAREST,
-                        cv::BORDER_CONSTANT, cv::Scalar(0));
+    // Inside the area in both frames: the intersection of two convex polygons, filled once.
+    if (!area.empty()) {
+      ImageArea both;
+      cv::intersectConvexConvex(polygon, area, both);
+      if (both.size() < 3) return;  // no overlap: nothing valid
+      polygon.swap(both);
+    }
+    FillArea(polygon, valid);
+    return;
   }
+  // Part of the source maps through infinity: fall back to warping the source's valid pixels.
+  cv::warpPerspective(AreaMask(area, source_size), *valid, ToCv(target_from_source), size, cv::INTER_NEAREST,
+                      cv::BORDER_CONSTANT, cv::Scalar(0));
   if (!area.empty()) cv::bitwise_and(*valid, AreaMask(area, size), *valid);
 }
 
