@@ -33,6 +33,7 @@ ImageArea ConvexAreaInside(const cv::Mat& valid) {
   cv::Point2d centroid(0, 0);
   for (const cv::Point& p : hull) centroid += cv::Point2d(p.x, p.y);
   centroid *= 1.0 / static_cast<double>(hull.size());
+  const cv::Mat invalid = valid == 0;
   cv::Mat filled(valid.size(), CV_8UC1), outside;
   // Shrinks by 0.5% steps: the hull of a convex region's pixels overhangs it by at most the
   // rasterisation of its edges, so a step or two suffices; non-convex regions take more.
@@ -41,8 +42,9 @@ ImageArea ConvexAreaInside(const cv::Mat& valid) {
     for (const cv::Point& p : hull)
       area.emplace_back(static_cast<float>(centroid.x + scale * (p.x - centroid.x)),
                         static_cast<float>(centroid.y + scale * (p.y - centroid.y)));
-    filled = AreaMask(area, valid.size());
-    cv::bitwise_and(filled, valid == 0, outside);
+    filled.setTo(0);
+    FillArea(area, &filled);
+    cv::bitwise_and(filled, invalid, outside);
     if (cv::countNonZero(outside) == 0) return area;
   }
   throw InputError("ConvexAreaInside: no convex polygon around the centroid fits the mask");
