@@ -43,6 +43,18 @@ FrameFeatures SelectFeatures(const FrameFeatures& features, const std::vector<in
   return out;
 }
 
+void AppendFeatures(const FrameFeatures& from, FrameFeatures* to) {
+  if (from.size() == 0) return;
+  if (!to->descriptors.empty() &&
+      (to->descriptors.cols != from.descriptors.cols || to->descriptors.type() != from.descriptors.type()))
+    throw InputError("AppendFeatures: descriptors of different widths or types");
+  for (int i = 0; i < static_cast<int>(from.size()); ++i) Append(from, i, to);
+  if (to->descriptors.empty())
+    to->descriptors = from.descriptors.clone();
+  else
+    cv::vconcat(to->descriptors, from.descriptors, to->descriptors);
+}
+
 FeatureSplit SplitByMask(const FrameFeatures& features, const cv::Mat& mask) {
   if (!mask.empty() && mask.type() != CV_8UC1)
     throw InputError("SplitByMask: mask must be CV_8UC1");

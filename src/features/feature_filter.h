@@ -25,4 +25,8 @@ FeatureSplit SplitByMask(const FrameFeatures& features, const cv::Mat& mask);
 // The features at `indices`, in that order.
 FrameFeatures SelectFeatures(const FrameFeatures& features, const std::vector<int>& indices);
 
+// Appends all of `from` after the features of `to`. Throws InputError when the descriptors of
+// both are non-empty with different widths or types.
+void AppendFeatures(const FrameFeatures& from, FrameFeatures* to);
+
 }  // namespace dynvo

@@ -173,6 +173,11 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
           "deg/s: a keyframe taken while the camera turns faster keeps its depths out of local BA "
           "(unsynchronised rolling-shutter sensors misplace depth then; 0 = never)");
   r->Bind("tracking.max_new_points", &t->max_new_points, "new map points per keyframe at most");
+  r->Bind("tracking.readmit_masked_px", &t->readmit_masked_px,
+          "features the dynamic mask removed rejoin the pose and the keyframe when they match the "
+          "map within this reprojection error (pixels) of the pose estimated without them; 0 = off");
+  r->Bind("tracking.readmit_rms_factor", &t->readmit_rms_factor,
+          "... and within this many times the RMS reprojection error of that pose's inliers");
   r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
           "match again this close to the first pose estimate and refine once more (0 = off)");
   // run

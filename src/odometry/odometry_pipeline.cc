@@ -23,12 +23,17 @@ bool SameImage(const cv::Mat& a, const cv::Mat& b) {
   return !a.empty() && a.data == b.data && a.size() == b.size() && a.step == b.step && a.type() == b.type();
 }
 
-cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split) {
+// Kept features green, removed ones red, removed ones readmitted by the tracker yellow.
+cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split,
+                     const std::vector<int>& readmitted) {
   cv::Mat canvas = bgr.clone();
   for (const cv::KeyPoint& k : split.kept.keypoints)
     cv::circle(canvas, k.pt, 3, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
-  for (const cv::KeyPoint& k : split.removed.keypoints)
-    cv::circle(canvas, k.pt, 3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  std::vector<uint8_t> back(split.removed.size(), 0);
+  for (int i : readmitted) back[static_cast<size_t>(i)] = 1;
+  for (size_t i = 0; i < split.removed.size(); ++i)
+    cv::circle(canvas, split.removed.keypoints[i].pt, 3,
+               back[i] ? cv::Scalar(0, 220, 255) : cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
   return canvas;
 }
 
@@ -134,15 +139,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.times.filter_ms = MsSince(t);
   record.features_kept = static_cast<int>(split.kept.size());
   record.features_removed = static_cast<int>(split.removed.size());
-  if (debug) debug->features = DrawFeatures(frame.bgr, split);
 
   // 4. Pose from the static features, local map, local BA.
-  const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp);
+  const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);
+  if (debug) debug->features = DrawFeatures(frame.bgr, split, tracking.readmitted);
   record.world_from_camera = tracking.world_from_camera;
   record.state = tracking.state;
   record.tracking_note = tracking.note;
   record.num_matches = tracking.num_matches;
   record.num_inliers = tracking.num_inliers;
+  record.features_readmitted = static_cast<int>(tracking.readmitted.size());
   record.keyframe = tracking.keyframe_inserted;
   record.times.match_ms = tracking.match_ms;
   record.times.pose_ms = tracking.pose_ms;

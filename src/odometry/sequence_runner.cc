@@ -65,7 +65,7 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
-  long long features_removed = 0;
+  long long features_removed = 0, features_readmitted = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -85,6 +85,7 @@ struct RunTally {
     mask_computed += r.mask_ok;
     mask_failed += !r.mask_ok && !r.mask_note.empty();
     features_removed += r.features_removed;
+    features_readmitted += r.features_readmitted;
     if (r.mask_quality) {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
@@ -183,7 +184,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                       {"keyframes", tally.keyframes},
                       {"masks_computed", tally.mask_computed},
                       {"masks_failed", tally.mask_failed},
-                      {"features_removed", tally.features_removed}};
+                      {"features_removed", tally.features_removed},
+                      {"features_readmitted", tally.features_readmitted}};
   nlohmann::json stages;
   for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
   report["time"] = {{"processing_ms", Summary(tally.processing)},

@@ -28,7 +28,7 @@ std::string Fixed(double v, int decimals) {
 
 const char* TimingCsvWriter::Header() {
   return "frame,stamp,load_ms,dynamic_mask_ms,features_ms,filter_ms,match_ms,pose_ms,map_ms,"
-         "local_ba_ms,processing_ms,features_total,features_kept,features_removed,"
+         "local_ba_ms,processing_ms,features_total,features_kept,features_removed,features_readmitted,"
          "dynamic_ratio,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,keyframe,"
          "mask_precision,mask_recall,mask_iou";
 }
@@ -46,6 +46,7 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
        << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ',' << Fixed(t.pose_ms, 3) << ','
        << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ',' << Fixed(t.processing_ms, 3)
        << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed << ','
+       << r.features_readmitted << ','
        << Fixed(r.dynamic_ratio, 5) << ',' << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
        << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches << ','
        << r.num_inliers << ',' << (r.keyframe ? 1 : 0) << ',';

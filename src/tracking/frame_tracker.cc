@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "core/error.h"
+#include "features/feature_filter.h"
+#include "tracking/static_verification.h"
 
 namespace dynvo {
 
@@ -52,6 +54,12 @@ void TrackerOptions::Check() const {
   if (!(max_ba_depth_rotation_deg_s >= 0.0))
     throw InputError("tracking.max_ba_depth_rotation_deg_s must be >= 0, got " +
                      std::to_string(max_ba_depth_rotation_deg_s));
+  if (!(readmit_masked_px >= 0.0))
+    throw InputError("tracking.readmit_masked_px must be >= 0, got " +
+                     std::to_string(readmit_masked_px));
+  if (!(readmit_rms_factor > 0.0))
+    throw InputError("tracking.readmit_rms_factor must be > 0, got " +
+                     std::to_string(readmit_rms_factor));
   if (!(rematch_radius_px >= 0.0))
     throw InputError("tracking.rematch_radius_px must be >= 0, got " +
                      std::to_string(rematch_radius_px));
@@ -79,8 +87,10 @@ void FrameTracker::WaitForBackgroundBundleAdjustment() {
   if (finished_ba_.report.ok) motion_.ReplaceLast(map_.keyframes().back().camera_from_world.inverse());
 }
 
-TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) {
+TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
+                                   const FrameFeatures* masked) {
   CheckFeatures(features);
+  if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
   TrackingResult result;
   WaitForBackgroundBundleAdjustment();
@@ -110,8 +120,17 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) 
   const Pose predicted_world_from_camera = motion_.Predict(stamp);
   std::vector<Match> matches;
   std::string failure;
-  const PoseEstimate estimate =
+  PoseEstimate estimate =
       EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
+  // The frame's features plus the masked ones verified static, when any are.
+  FrameFeatures joined;
+  const bool readmit = estimate.ok && masked != nullptr && masked->size() > 0 &&
+                       options_.readmit_masked_px > 0.0;
+  if (readmit) {
+    joined = features;
+    ReadmitStaticFeatures(*masked, joined, matches, estimate, result);
+  }
+  const FrameFeatures& used = readmit ? joined : features;
 
   const Clock::time_point start = Clock::now();
   if (estimate.ok) {
@@ -129,7 +148,7 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp) 
                        reference_tracked_, keyframe_camera_from_world, estimate.camera_from_world);
     result.map_ms = MillisecondsSince(start);
     if (decision.insert)
-      result.world_from_camera = InsertKeyframe(features, stamp, matches, estimate.inliers,
+      result.world_from_camera = InsertKeyframe(used, stamp, matches, estimate.inliers,
                                                 result.world_from_camera, result);
   } else {
     result.world_from_camera = predicted_world_from_camera;
@@ -258,6 +277,57 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
   if (result.used_epnp) polish(estimate, matches);
   result.num_matches = static_cast<int>(matches.size());
   return estimate;
+}
+
+void FrameTracker::ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatures& features,
+                                         std::vector<Match>& matches, PoseEstimate& estimate,
+                                         TrackingResult& result) {
+  const Clock::time_point start = Clock::now();
+  std::vector<uint8_t> taken(visible_points_.size(), 0);
+  for (size_t i = 0; i < matches.size(); ++i)
+    if (estimate.inliers[i]) taken[static_cast<size_t>(matches[i].point_index)] = 1;
+  const std::vector<Match> verified = VerifyStaticFeatures(
+      visible_points_, visible_descriptors_, &visible_angles_, masked, camera_,
+      estimate.camera_from_world, options_.matching,
+      std::min(options_.readmit_masked_px, options_.readmit_rms_factor * estimate.rms_error_px),
+      taken);
+  result.match_ms += MillisecondsSince(start);
+  if (verified.empty()) return;
+
+  const Clock::time_point refine_start = Clock::now();
+  std::vector<int> masked_indices;
+  masked_indices.reserve(verified.size());
+  for (const Match& match : verified) masked_indices.push_back(match.feature_index);
+  const FrameFeatures readmitted = SelectFeatures(masked, masked_indices);
+  std::vector<Match> joined_matches = matches;
+  const int offset = static_cast<int>(features.size());
+  for (size_t k = 0; k < verified.size(); ++k) {
+    Match match = verified[k];
+    match.feature_index = offset + static_cast<int>(k);
+    joined_matches.push_back(match);
+  }
+  // Start set: the inliers without the masked features plus the verified ones.
+  std::vector<uint8_t> use = estimate.inliers;
+  use.resize(joined_matches.size(), 1);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  points.reserve(joined_matches.size());
+  pixels.reserve(joined_matches.size());
+  for (const Match& match : joined_matches) {
+    points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
+    pixels.push_back(match.feature_index < offset
+                         ? features.pixels[static_cast<size_t>(match.feature_index)]
+                         : readmitted.pixels[static_cast<size_t>(match.feature_index - offset)]);
+  }
+  PoseEstimate joint =
+      RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
+  result.pose_ms += MillisecondsSince(refine_start);
+  if (!joint.ok) return;
+  for (size_t k = 0; k < verified.size(); ++k)
+    if (joint.inliers[matches.size() + k]) result.readmitted.push_back(verified[k].feature_index);
+  AppendFeatures(readmitted, &features);
+  matches = std::move(joined_matches);
+  estimate = std::move(joint);
 }
 
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {

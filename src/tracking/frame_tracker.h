@@ -38,7 +38,13 @@ struct TrackerOptions {
                                        // start from depth (deg/s; 0 = never; >= 0)
   double rematch_radius_px = 5.0;      // after the first pose estimate, match again around it
                                        // within this radius and refine again (pixels; 0 = off,
-                                       // >= 0); not yet a config key
+                                       // >= 0)
+  double readmit_masked_px = 3.0;      // masked features (see Track) matching a map point within
+                                       // this reprojection error of the pose estimated without
+                                       // them rejoin the pose and the keyframe (pixels; 0 = off:
+                                       // masked features stay out; >= 0) ...
+  double readmit_rms_factor = 2.0;     // ... and within this many times the RMS error of that
+                                       // pose's inliers (> 0)
 
   // Throws InputError naming the key ("tracking.min_matches ...", "pose.min_inliers ...")
   // when this or any sub-option is out of range.
@@ -51,6 +57,8 @@ struct TrackingResult {
   std::string note;               // why lost / reinitialised / not initialised, "" otherwise
   int num_matches = 0;            // map matches used for the pose
   int num_inliers = 0;            // pose inliers among them
+  std::vector<int> readmitted;    // masked features (indices into Track's `masked`) verified
+                                  // static that are inliers of the final pose
   bool used_epnp = false;         // the pose came from the EPnP + RANSAC retry
   bool keyframe_inserted = false;
   int map_keyframes = 0;          // local map size after this frame
@@ -72,8 +80,12 @@ class FrameTracker {
   // Tracks the (already filtered, static) features of one frame taken at `stamp` (seconds);
   // always returns a pose. Frames before the first one with min_matches depth features get
   // the identity (state kInitializing, with a note); that frame's camera is the world frame.
-  // Throws InputError when the feature arrays disagree in size.
-  TrackingResult Track(const FrameFeatures& features, double stamp);
+  // `masked` (optional) are the features the dynamic mask removed: with readmit_masked_px > 0,
+  // those that match the map at the pose from `features` within that error rejoin the final
+  // pose refinement and the keyframe; the others are never used. Throws InputError when the
+  // feature arrays disagree in size.
+  TrackingResult Track(const FrameFeatures& features, double stamp,
+                       const FrameFeatures* masked = nullptr);
 
   // The local map, after any background bundle adjustment has finished.
   const LocalMap& map();
@@ -89,6 +101,12 @@ class FrameTracker {
                                  const Pose& predicted_camera_from_world,
                                  std::vector<Match>& matches, std::string& failure,
                                  TrackingResult& result);
+  // Adds the masked features that VerifyStaticFeatures accepts at `estimate`'s pose to
+  // `features` and `matches` and refines the pose with them; keeps everything unchanged when
+  // none is accepted or that refinement fails.
+  void ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatures& features,
+                             std::vector<Match>& matches, PoseEstimate& estimate,
+                             TrackingResult& result);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
