@@ -69,5 +69,30 @@ TEST(FeatureFilter, SelectFeaturesFollowsIndices) {
   EXPECT_THROW(SelectFeatures(f, {10}), InputError);
 }
 
+TEST(FeatureFilter, AppendFeaturesRestoresASplit) {
+  const FrameFeatures f = Diagonal();
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(0, 0, 180, 480)).setTo(1);  // features 0..3 (x 20..140)
+  const FeatureSplit split = SplitByMask(f, mask);
+  FrameFeatures joined = split.removed;
+  AppendFeatures(split.kept, &joined);
+  ASSERT_EQ(joined.size(), f.size());
+  ASSERT_EQ(joined.descriptors.rows, 10);
+  for (int i = 0; i < 10; ++i) {  // removed 0..3 came first, kept 4..9 after: the same order
+    EXPECT_EQ(joined.keypoints[i].pt, f.keypoints[i].pt);
+    EXPECT_EQ(joined.descriptors.at<uint8_t>(i, 0), i);
+    EXPECT_EQ(joined.pixels[i], f.pixels[i]);
+    EXPECT_EQ(joined.depths[i], f.depths[i]);
+    EXPECT_EQ(joined.points_in_camera[i], f.points_in_camera[i]);
+  }
+  FrameFeatures empty;
+  AppendFeatures(f, &empty);
+  EXPECT_EQ(empty.size(), 10u);
+  EXPECT_EQ(empty.descriptors.rows, 10);
+  FrameFeatures wide = f;
+  wide.descriptors = cv::Mat(10, 64, CV_8UC1, cv::Scalar(0));
+  EXPECT_THROW(AppendFeatures(f, &wide), InputError);
+}
+
 }  // namespace
 }  // namespace dynvo
