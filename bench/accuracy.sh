@@ -29,20 +29,25 @@ sequences="$work/seq"
 DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$shared" bash "$root/tools/make_sequences.sh" \
   --out "$sequences" --frames "$frames" --seed "$seed" >/dev/null
 
-# run <sequence dir> <mode> [--set k=v...] -> prints "rpe_rmse mask_iou processing_median_ms"
+# run <sequence dir> <mode> [--set k=v...]
+#   -> prints "rpe_rmse mask_iou processing_median_ms per_frame_rpe_rmse"
 run() {
   local seq="$1" mode="$2" out="$work/runs/$(basename "$1")_$2"
   shift 2
   [ $# -gt 0 ] && out="${out}_$(echo "$*" | tr -c 'a-z0-9=\n' '_')"
   "$bin/dynvo-cli" run --quiet --force --dataset "$seq" --config "$root/configs/$mode.json" --out "$out" "$@"
   "$bin/rpe" "$seq/groundtruth.txt" "$out/trajectory.txt" --json > "$out/rpe.json"
+  "$bin/rpe" "$seq/groundtruth.txt" "$out/trajectory.txt" --delta 1 --delta-unit f --json \
+    > "$out/rpe_frame.json"
   python3 - "$out" <<'PY'
 import json, sys
 out = sys.argv[1]
 rpe = json.load(open(out + "/rpe.json"))
+per_frame = json.load(open(out + "/rpe_frame.json"))
 run = json.load(open(out + "/run.json"))
 mq = run.get("mask_quality")
-print(rpe["translational_error_m"]["rmse"], mq["iou"] if mq else "-", run["time"]["processing_ms"]["median"])
+print(rpe["translational_error_m"]["rmse"], mq["iou"] if mq else "-", run["time"]["processing_ms"]["median"],
+      per_frame["translational_error_m"]["rmse"])
 PY
 }
 
@@ -50,14 +55,14 @@ csv="$results/accuracy.csv"
 echo "sequence,kind,twin,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,twin_paper_rpe,twin_paper_strict_rpe,twin_tuned_rpe,paper_mask_iou,tuned_mask_iou,paper_ms,baseline_ms" > "$csv"
 row() {  # name kind seq twin_seq_or_empty
   local name="$1" kind="$2" seq="$3" twin="$4"
-  read -r p_rpe p_iou p_ms < <(run "$seq" paper)
-  read -r s_rpe _ _ < <(run "$seq" paper "${strict[@]}")
-  read -r u_rpe u_iou _ < <(run "$seq" tuned)
-  read -r b_rpe _ b_ms < <(run "$seq" baseline)
+  read -r p_rpe p_iou p_ms _ < <(run "$seq" paper)
+  read -r s_rpe _ _ _ < <(run "$seq" paper "${strict[@]}")
+  read -r u_rpe u_iou _ _ < <(run "$seq" tuned)
+  read -r b_rpe _ b_ms _ < <(run "$seq" baseline)
   local t_rpe="" ts_rpe="" tu_rpe=""
-  [ -n "$twin" ] && read -r t_rpe _ _ < <(run "$twin" paper)
-  [ -n "$twin" ] && read -r ts_rpe _ _ < <(run "$twin" paper "${strict[@]}")
-  [ -n "$twin" ] && read -r tu_rpe _ _ < <(run "$twin" tuned)
+  [ -n "$twin" ] && read -r t_rpe _ _ _ < <(run "$twin" paper)
+  [ -n "$twin" ] && read -r ts_rpe _ _ _ < <(run "$twin" paper "${strict[@]}")
+  [ -n "$twin" ] && read -r tu_rpe _ _ _ < <(run "$twin" tuned)
   echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$s_rpe,$u_rpe,$b_rpe,$t_rpe,$ts_rpe,$tu_rpe,$p_iou,$u_iou,$p_ms,$b_ms" >> "$csv"
   echo "accuracy: $name done" >&2
 }
@@ -86,16 +91,16 @@ cat "$results/accuracy.md"
 
 # The real sequences again, over RANSAC seeds.
 seeds_csv="$results/accuracy_seeds.csv"
-echo "sequence,seed,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe" > "$seeds_csv"
+echo "sequence,seed,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,paper_frame_rpe,paper_strict_frame_rpe,tuned_frame_rpe,baseline_frame_rpe" > "$seeds_csv"
 seeds_rows() {  # name seq
-  local name="$1" seq="$2" s p st u b
+  local name="$1" seq="$2" s p st u b pf sf uf bf
   for s in $(seq 1 "$seeds"); do
     local overrides=(--set "ego_motion.seed=$s" --set "pose.seed=$s")
-    read -r p _ _ < <(run "$seq" paper "${overrides[@]}")
-    read -r st _ _ < <(run "$seq" paper "${overrides[@]}" "${strict[@]}")
-    read -r u _ _ < <(run "$seq" tuned "${overrides[@]}")
-    read -r b _ _ < <(run "$seq" baseline "${overrides[@]}")
-    echo "$name,$s,$p,$st,$u,$b" >> "$seeds_csv"
+    read -r p _ _ pf < <(run "$seq" paper "${overrides[@]}")
+    read -r st _ _ sf < <(run "$seq" paper "${overrides[@]}" "${strict[@]}")
+    read -r u _ _ uf < <(run "$seq" tuned "${overrides[@]}")
+    read -r b _ _ bf < <(run "$seq" baseline "${overrides[@]}")
+    echo "$name,$s,$p,$st,$u,$b,$pf,$sf,$uf,$bf" >> "$seeds_csv"
   done
   echo "accuracy: $name over $seeds seeds done" >&2
 }

@@ -37,3 +37,17 @@ for name, runs in by_sequence.items():
     gain = lambda m: 100.0 * (medians[name][m] - medians[name]["baseline"]) / medians[name]["baseline"]
     print("| %s | %s | %s | %+.1f%% | %+.1f%% |" % (name, " | ".join(cells), " | ".join(ratios),
                                                    gain("paper"), gain("paper_strict")))
+
+print()
+print("Per-frame translational RPE RMSE (m, `rpe GT EST --delta 1 --delta-unit f`) of the same runs, "
+      "median [min, max] over the seeds: the error of each frame-to-frame step, where removing "
+      "features shows before drift averages it.")
+print()
+print("| sequence | paper | paper, strict | tuned | baseline | paper vs baseline | strict vs baseline |")
+print("|---|---|---|---|---|---|---|")
+for name, runs in by_sequence.items():
+    values = {m: [float(r[m + "_frame_rpe"]) for r in runs] for m in modes}
+    med = {m: statistics.median(v) for m, v in values.items()}
+    gain = lambda m: 100.0 * (med[m] - med["baseline"]) / med["baseline"]
+    print("| %s | %s | %+.1f%% | %+.1f%% |" % (
+        name, " | ".join(summary(values[m]) for m in modes), gain("paper"), gain("paper_strict")))

@@ -124,13 +124,10 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
       EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
   // The frame's features plus the masked ones verified static, when any are.
   FrameFeatures joined;
-  const bool readmit = estimate.ok && masked != nullptr && masked->size() > 0 &&
-                       options_.readmit_masked_px > 0.0;
-  if (readmit) {
-    joined = features;
-    ReadmitStaticFeatures(*masked, joined, matches, estimate, result);
-  }
-  const FrameFeatures& used = readmit ? joined : features;
+  const bool readmitted = estimate.ok && masked != nullptr && masked->size() > 0 &&
+                          options_.readmit_masked_px > 0.0 &&
+                          ReadmitStaticFeatures(features, *masked, joined, matches, estimate, result);
+  const FrameFeatures& used = readmitted ? joined : features;
 
   const Clock::time_point start = Clock::now();
   if (estimate.ok) {
@@ -279,9 +276,9 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
   return estimate;
 }
 
-void FrameTracker::ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatures& features,
-                                         std::vector<Match>& matches, PoseEstimate& estimate,
-                                         TrackingResult& result) {
+bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
+                                         FrameFeatures& joined, std::vector<Match>& matches,
+                                         PoseEstimate& estimate, TrackingResult& result) {
   const Clock::time_point start = Clock::now();
   std::vector<uint8_t> taken(visible_points_.size(), 0);
   for (size_t i = 0; i < matches.size(); ++i)
@@ -292,7 +289,7 @@ void FrameTracker::ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatu
       std::min(options_.readmit_masked_px, options_.readmit_rms_factor * estimate.rms_error_px),
       taken);
   result.match_ms += MillisecondsSince(start);
-  if (verified.empty()) return;
+  if (verified.empty()) return false;
 
   const Clock::time_point refine_start = Clock::now();
   std::vector<int> masked_indices;
@@ -322,12 +319,14 @@ void FrameTracker::ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatu
   PoseEstimate joint =
       RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
   result.pose_ms += MillisecondsSince(refine_start);
-  if (!joint.ok) return;
+  if (!joint.ok) return false;
   for (size_t k = 0; k < verified.size(); ++k)
     if (joint.inliers[matches.size() + k]) result.readmitted.push_back(verified[k].feature_index);
-  AppendFeatures(readmitted, &features);
+  joined = features;
+  AppendFeatures(readmitted, &joined);
   matches = std::move(joined_matches);
   estimate = std::move(joint);
+  return true;
 }
 
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {

@@ -101,12 +101,13 @@ class FrameTracker {
                                  const Pose& predicted_camera_from_world,
                                  std::vector<Match>& matches, std::string& failure,
                                  TrackingResult& result);
-  // Adds the masked features that VerifyStaticFeatures accepts at `estimate`'s pose to
-  // `features` and `matches` and refines the pose with them; keeps everything unchanged when
-  // none is accepted or that refinement fails.
-  void ReadmitStaticFeatures(const FrameFeatures& masked, FrameFeatures& features,
-                             std::vector<Match>& matches, PoseEstimate& estimate,
-                             TrackingResult& result);
+  // Refines `estimate` again with the masked features that VerifyStaticFeatures accepts at its
+  // pose added to `matches`; `joined` gets `features` followed by those masked features, which
+  // the new matches index. False, with everything unchanged, when none is accepted or that
+  // refinement fails.
+  bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
+                             FrameFeatures& joined, std::vector<Match>& matches,
+                             PoseEstimate& estimate, TrackingResult& result);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
