@@ -332,7 +332,7 @@ def plot_mask_panels(path, sequence, dataset, paper_run, frames):
             ("(e) forward mask\n(Otsu, erode, dilate)", panel(frame, "forward_mask"), "gray"),
             ("(f) backward mask", panel(frame, "backward_mask"), "gray"),
             (fused_title, panel(frame, "fused_mask"), "gray"),
-            ("(h) ORB features: kept green,\nremoved (in mask) red", panel(frame, "features"), None),
+            ("(h) ORB features: kept green, removed\n(in mask) red, readmitted yellow", panel(frame, "features"), None),
         ]
         axes = block.subplots(2, cols)
         for ax, (title, image, cmap) in zip(axes.ravel(), tiles):
@@ -348,9 +348,11 @@ def plot_mask_panels(path, sequence, dataset, paper_run, frames):
             if image is not None and gt is not None and title.startswith("(g)"):
                 ax.contour((gt > 0).astype(np.float32), levels=[0.5], colors="cyan",
                            linewidths=1.2)
-        block.suptitle("%s, frame %d (t = %.2f s): %s of %s ORB features removed" % (
+        block.suptitle("%s, frame %d (t = %.2f s): %s of %s ORB features removed, %s of them "
+                       "readmitted as static" % (
             sequence, frame, float(row["stamp"]) - float(timing[min(timing)]["stamp"]),
-            row["features_removed"], row["features_total"]), fontsize=13)
+            row["features_removed"], row["features_total"], row["features_readmitted"]),
+            fontsize=13)
     fig.savefig(path, dpi=80)
     # Photographic tiles compress poorly as true colour: a 256-colour palette keeps the
     # committed figure near 300 KB instead of 1.5 MB, with no visible loss at this size.
