@@ -291,40 +291,45 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   result.match_ms += MillisecondsSince(start);
   if (verified.empty()) return false;
 
+  // Refine with the frame's matches (start set: the inliers so far) plus the verified ones.
   const Clock::time_point refine_start = Clock::now();
-  std::vector<int> masked_indices;
-  masked_indices.reserve(verified.size());
-  for (const Match& match : verified) masked_indices.push_back(match.feature_index);
-  const FrameFeatures readmitted = SelectFeatures(masked, masked_indices);
-  std::vector<Match> joined_matches = matches;
-  const int offset = static_cast<int>(features.size());
-  for (size_t k = 0; k < verified.size(); ++k) {
-    Match match = verified[k];
-    match.feature_index = offset + static_cast<int>(k);
-    joined_matches.push_back(match);
-  }
-  // Start set: the inliers without the masked features plus the verified ones.
-  std::vector<uint8_t> use = estimate.inliers;
-  use.resize(joined_matches.size(), 1);
+  const size_t n = matches.size();
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
-  points.reserve(joined_matches.size());
-  pixels.reserve(joined_matches.size());
-  for (const Match& match : joined_matches) {
+  points.reserve(n + verified.size());
+  pixels.reserve(n + verified.size());
+  for (const Match& match : matches) {
     points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
-    pixels.push_back(match.feature_index < offset
-                         ? features.pixels[static_cast<size_t>(match.feature_index)]
-                         : readmitted.pixels[static_cast<size_t>(match.feature_index - offset)]);
+    pixels.push_back(features.pixels[static_cast<size_t>(match.feature_index)]);
   }
+  for (const Match& match : verified) {
+    points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
+    pixels.push_back(masked.pixels[static_cast<size_t>(match.feature_index)]);
+  }
+  std::vector<uint8_t> use = estimate.inliers;
+  use.resize(n + verified.size(), 1);
   PoseEstimate joint =
       RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
   result.pose_ms += MillisecondsSince(refine_start);
   if (!joint.ok) return false;
+
+  // Only the verified features that are inliers of that pose rejoin: a masked feature left out
+  // of `joined` can never become a new map point at a keyframe.
   for (size_t k = 0; k < verified.size(); ++k)
-    if (joint.inliers[matches.size() + k]) result.readmitted.push_back(verified[k].feature_index);
+    if (joint.inliers[n + k]) result.readmitted.push_back(verified[k].feature_index);
   joined = features;
-  AppendFeatures(readmitted, &joined);
-  matches = std::move(joined_matches);
+  AppendFeatures(SelectFeatures(masked, result.readmitted), &joined);
+  // The frame's matches, then one per readmitted feature, indexing `joined`.
+  std::vector<uint8_t> inliers(joint.inliers.begin(), joint.inliers.begin() + static_cast<std::ptrdiff_t>(n));
+  int next_index = static_cast<int>(features.size());
+  for (size_t k = 0; k < verified.size(); ++k) {
+    if (!joint.inliers[n + k]) continue;
+    Match match = verified[k];
+    match.feature_index = next_index++;
+    matches.push_back(match);
+    inliers.push_back(1);
+  }
+  joint.inliers = std::move(inliers);
   estimate = std::move(joint);
   return true;
 }

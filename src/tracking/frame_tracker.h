@@ -102,9 +102,9 @@ class FrameTracker {
                                  std::vector<Match>& matches, std::string& failure,
                                  TrackingResult& result);
   // Refines `estimate` again with the masked features that VerifyStaticFeatures accepts at its
-  // pose added to `matches`; `joined` gets `features` followed by those masked features, which
-  // the new matches index. False, with everything unchanged, when none is accepted or that
-  // refinement fails.
+  // pose; those that are inliers of the refined pose are appended to `matches`, and `joined`
+  // gets `features` followed by them (the new matches index `joined`). False, with everything
+  // unchanged, when none is accepted or that refinement fails.
   bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
                              FrameFeatures& joined, std::vector<Match>& matches,
                              PoseEstimate& estimate, TrackingResult& result);
