@@ -275,6 +275,8 @@ TEST(FrameTracker, RematchAroundTheRefinedPoseRecoversMissedMatches) {
 struct MaskedBoxRun {
   int masked = 0, readmitted = 0;
   double max_t_error = 0.0;
+  int new_points = 0;      // map points created from frame 10 on, still in the map
+  int new_box_points = 0;  // those made from a box feature
 };
 MaskedBoxRun TrackWithMaskedBox(double box_speed_m, const TrackerOptions& options) {
   const test::SyntheticWorld room = RoomWorld();
@@ -311,6 +313,17 @@ MaskedBoxRun TrackWithMaskedBox(double box_speed_m, const TrackerOptions& option
     est_prev = r.world_from_camera;
     true_prev = truth;
   }
+  // Masked features never create map points. A point made from a box feature would carry its
+  // descriptor: within a few flipped bits of the box point's, ~128 bits from any other.
+  for (const auto& [id, point] : tracker.map().points()) {
+    if (point.first_frame < 10) continue;
+    ++out.new_points;
+    for (int j = 0; j < box.descriptors.rows; ++j)
+      if (DescriptorDistance(point.descriptor.ptr(), box.descriptors.ptr(j)) < 64) {
+        ++out.new_box_points;
+        break;
+      }
+  }
   return out;
 }
 
@@ -342,6 +355,11 @@ TEST(FrameTracker, ReadmitsMaskedFeaturesOnlyWhereTheMapExplainsThem) {
   // errors are ~1-3 mm here from 0.5 px noise).
   EXPECT_LT(moving.max_t_error, moving_off.max_t_error + 0.0005);
   EXPECT_LT(still.max_t_error, still_off.max_t_error + 0.0005);
+  // New points keep coming from the room; none from the masked box.
+  for (const MaskedBoxRun* run : {&still, &moving}) {
+    EXPECT_GT(run->new_points, 10);
+    EXPECT_EQ(run->new_box_points, 0);
+  }
 }
 
 TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
