@@ -22,16 +22,10 @@ std::vector<Match> VerifyStaticFeatures(const std::vector<Eigen::Vector3d>& poin
   const std::vector<Match> matches =
       MatchByProjection(points_in_world, point_descriptors, masked, camera, camera_from_world,
                         tight, point_angles_deg);
-  const double max_error2 = max_error_px * max_error_px;
-  for (const Match& match : matches) {
-    const size_t p = static_cast<size_t>(match.point_index);
-    if (taken[p]) continue;
-    const Eigen::Vector3d in_camera = camera_from_world * points_in_world[p];
-    if (!(in_camera.z() > 0.0)) continue;
-    const Eigen::Vector2d error =
-        camera.Project(in_camera) - masked.pixels[static_cast<size_t>(match.feature_index)];
-    if (error.squaredNorm() <= max_error2) verified.push_back(match);
-  }
+  // The matcher keeps only features within the search radius of the projection: with the
+  // radius set to the bar, every match is within it.
+  for (const Match& match : matches)
+    if (!taken[static_cast<size_t>(match.point_index)]) verified.push_back(match);
   return verified;
 }
 
