@@ -1,44 +1,69 @@
 #include "pose/pose_reprojection_cost.h"
 
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
 #include "pose/rotation_jacobian.h"
 
 namespace dynvo {
 
-PoseReprojectionCost::PoseReprojectionCost(const Eigen::Vector2d& observed, const Eigen::Vector3d& point_in_world,
-                                           double fx, double fy, double cx, double cy)
-    : observed_(observed), point_(point_in_world), fx_(fx), fy_(fy), cx_(cx), cy_(cy) {}
+PoseReprojectionCost::PoseReprojectionCost(const std::vector<Eigen::Vector2d>& observed,
+                                           const std::vector<Eigen::Vector3d>& points_in_world,
+                                           std::vector<int> use, double fx, double fy, double cx, double cy,
+                                           double huber_delta_px)
+    : observed_(observed), points_(points_in_world), use_(std::move(use)), fx_(fx), fy_(fy), cx_(cx), cy_(cy),
+      delta_(huber_delta_px) {
+  if (observed.size() != points_in_world.size())
+    throw InputError("PoseReprojectionCost: observations and points differ in number");
+  for (int i : use_)
+    if (i < 0 || static_cast<size_t>(i) >= observed.size())
+      throw InputError("PoseReprojectionCost: correspondence index out of range");
+  if (!(huber_delta_px > 0.0)) throw InputError("PoseReprojectionCost: the Huber scale must be positive");
+  set_num_residuals(2 * static_cast<int>(use_.size()));
+  mutable_parameter_block_sizes()->push_back(4);
+  mutable_parameter_block_sizes()->push_back(3);
+}
 
 bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* residuals,
                                     double** jacobians) const {
   const double* q = parameters[0];  // x y z w
   const Eigen::Map<const Eigen::Vector3d> t(parameters[1]);
-  const Eigen::Vector3d p = RotatePoint(q, point_) + t;
-  using RowMajor24 = Eigen::Matrix<double, 2, 4, Eigen::RowMajor>;
-  using RowMajor23 = Eigen::Matrix<double, 2, 3, Eigen::RowMajor>;
-
-  if (p.z() < 1e-6) {
-    residuals[0] = residuals[1] = 1e3;
-    if (jacobians != nullptr) {
-      if (jacobians[0] != nullptr) Eigen::Map<RowMajor24>(jacobians[0]).setZero();
-      if (jacobians[1] != nullptr) Eigen::Map<RowMajor23>(jacobians[1]).setZero();
+  double* j_q = jacobians != nullptr ? jacobians[0] : nullptr;  // rows of 4, row-major
+  double* j_t = jacobians != nullptr ? jacobians[1] : nullptr;  // rows of 3
+  const double delta_squared = delta_ * delta_;
+  for (size_t k = 0; k < use_.size(); ++k) {
+    const int i = use_[k];
+    const Eigen::Vector3d p = RotatePoint(q, points_[i]) + t;
+    Eigen::Map<Eigen::Vector2d> r(residuals + 2 * k);
+    Eigen::Matrix<double, 2, 3> de_dp = Eigen::Matrix<double, 2, 3>::Zero();
+    Eigen::Vector2d e(1e3, 1e3);
+    const bool in_front = p.z() >= 1e-6;
+    if (in_front) {
+      const double iz = 1.0 / p.z();
+      e = Eigen::Vector2d(fx_ * p.x() * iz + cx_ - observed_[i].x(), fy_ * p.y() * iz + cy_ - observed_[i].y());
+      de_dp << fx_ * iz, 0.0, -fx_ * p.x() * iz * iz, 0.0, fy_ * iz, -fy_ * p.y() * iz * iz;
     }
-    return true;
-  }
-  const double iz = 1.0 / p.z();
-  residuals[0] = fx_ * p.x() * iz + cx_ - observed_.x();
-  residuals[1] = fy_ * p.y() * iz + cy_ - observed_.y();
-  if (jacobians == nullptr) return true;
-
-  // d residual / d p.
-  Eigen::Matrix<double, 2, 3> dr_dp;
-  dr_dp << fx_ * iz, 0.0, -fx_ * p.x() * iz * iz, 0.0, fy_ * iz, -fy_ * p.y() * iz * iz;
-  if (jacobians[0] != nullptr) {
-    Eigen::Map<RowMajor24> j_q(jacobians[0]);
-    j_q = dr_dp * RotatedPointJacobian(q, point_);
-  }
-  if (jacobians[1] != nullptr) {
-    Eigen::Map<RowMajor23> j_t(jacobians[1]);
-    j_t = dr_dp;
+    // Huber: rho(s) = s inside, 2 delta sqrt(s) - delta^2 outside; r = w e with w^2 = rho(s) / s.
+    const double s = e.squaredNorm();
+    Eigen::Matrix2d dr_de = Eigen::Matrix2d::Identity();
+    if (s <= delta_squared) {
+      r = e;
+    } else {
+      const double root_s = std::sqrt(s);
+      const double w = std::sqrt(2.0 * delta_ / root_s - delta_squared / s);
+      r = w * e;
+      // dw/ds = (-delta s^-3/2 + delta^2 s^-2) / (2 w); dr/de = w I + 2 (dw/ds) e e^T.
+      const double dw_ds = (-delta_ / (s * root_s) + delta_squared / (s * s)) / (2.0 * w);
+      dr_de = w * Eigen::Matrix2d::Identity() + 2.0 * dw_ds * e * e.transpose();
+    }
+    if (j_q == nullptr && j_t == nullptr) continue;
+    const Eigen::Matrix<double, 2, 3> dr_dp = dr_de * de_dp;
+    if (j_q != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>>(j_q + 8 * k) =
+          dr_dp * RotatedPointJacobian(q, points_[i]);
+    }
+    if (j_t != nullptr) Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>(j_t + 6 * k) = dr_dp;
   }
   return true;
 }

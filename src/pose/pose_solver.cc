@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
+#include <utility>
 #include <random>
 #include <sstream>
 
@@ -218,9 +218,6 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
                  initial_camera_from_world.translation().y(),
                  initial_camera_from_world.translation().z()};
 
-  // Cost functions built once and shared by the rounds' problems.
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs(n);
-  ceres::HuberLoss huber(options.huber_delta_px);
   std::vector<uint8_t> active(n, 0);
   for (size_t i = 0; i < n; ++i) active[i] = use == nullptr ? 1 : (*use)[i];
 
@@ -232,22 +229,15 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
   solver_options.minimizer_progress_to_stdout = false;
 
   for (int round = 0; round < options.refine_rounds; ++round) {
-    int active_count = 0;
-    for (uint8_t a : active) active_count += a;
-    if (active_count < options.min_inliers) break;
-    ceres::Problem::Options problem_options;
-    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
-    problem_options.enable_fast_removal = false;
-    ceres::Problem problem(problem_options);
-    for (size_t i = 0; i < n; ++i) {
-      if (!active[i]) continue;
-      if (!costs[i])
-        costs[i] = std::make_unique<PoseReprojectionCost>(pixels[i], points_in_world[i], camera.fx,
-                                                          camera.fy, camera.cx, camera.cy);
-      problem.AddResidualBlock(costs[i].get(), &huber, q_xyzw, t);
-    }
+    std::vector<int> active_indices;
+    for (size_t i = 0; i < n; ++i)
+      if (active[i]) active_indices.push_back(static_cast<int>(i));
+    if (static_cast<int>(active_indices.size()) < options.min_inliers) break;
+    // All active correspondences in one block, Huber inside (see PoseReprojectionCost).
+    ceres::Problem problem;
+    problem.AddResidualBlock(new PoseReprojectionCost(pixels, points_in_world, std::move(active_indices), camera.fx,
+                                                      camera.fy, camera.cx, camera.cy, options.huber_delta_px),
+                             nullptr, q_xyzw, t);
     problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);

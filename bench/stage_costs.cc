@@ -1,0 +1,158 @@
+// Single-thread cost of each step of the dynamic-mask front end and of feature extraction, on
+// consecutive frame pairs of a sequence: where the per-frame milliseconds of the paper pipeline
+// go before threads overlap them. Prints the median ms over frame pairs of each step.
+//
+//   stage_costs --dataset DIR [--config configs/paper.json] [--frames 60] [--set key=value]...
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+#include "dataset/tum_dataset.h"
+#include "dynamic_mask/difference_threshold.h"
+#include "dynamic_mask/dynamic_mask_detector.h"
+#include "dynamic_mask/frame_difference.h"
+#include "dynamic_mask/mask_morphology.h"
+#include "dynamic_mask/mask_regions.h"
+#include "dynamic_mask/motion_compensation.h"
+#include "ego_motion/homography.h"
+#include "ego_motion/klt_tracker.h"
+#include "features/feature_extractor.h"
+#include "features/feature_filter.h"
+#include "odometry/odometry_config.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Collects named step times in the order steps were first timed.
+class StepTimes {
+ public:
+  template <typename F>
+  auto Time(const std::string& name, F&& step) {
+    if (times_.find(name) == times_.end()) order_.push_back(name);
+    const auto start = Clock::now();
+    if constexpr (std::is_void_v<decltype(step())>) {
+      step();
+      times_[name].push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    } else {
+      auto out = step();
+      times_[name].push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+      return out;
+    }
+  }
+
+  void Print() const {
+    double total = 0.0;
+    std::printf("%-34s %9s\n", "step (one thread)", "median_ms");
+    for (const std::string& name : order_) {
+      const double m = Median(times_.at(name));
+      total += m;
+      std::printf("%-34s %9.3f\n", name.c_str(), m);
+    }
+    std::printf("%-34s %9.3f\n", "sum of medians", total);
+  }
+
+ private:
+  std::vector<std::string> order_;
+  std::map<std::string, std::vector<double>> times_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"stage_costs: single-thread cost of each step of the dynamic mask and of feature extraction"};
+  std::string dataset_dir, config_path;
+  std::vector<std::string> overrides;
+  int max_frames = 60;
+  app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
+  app.add_option("--config", config_path, "dynvo config (default: built-in = paper)");
+  app.add_option("--set", overrides, "config override key=value (repeatable)");
+  app.add_option("--frames", max_frames, "use at most this many frames")->check(CLI::Range(2, 100000));
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
+    dynvo::TumDatasetOptions dataset_options = config.dataset;
+    dataset_options.camera = config.CameraOverride();
+    const dynvo::TumDataset dataset(dataset_dir, dataset_options);
+    const size_t count = std::min(dataset.size(), static_cast<size_t>(max_frames));
+    std::vector<dynvo::RgbdFrame> frames;
+    for (size_t i = 0; i < count; ++i) frames.push_back(dataset.Load(i));
+
+    const dynvo::DynamicMaskOptions& mask_options = config.dynamic_mask;
+    const dynvo::ImageArea& area = dataset.image_area();
+    dynvo::FeatureExtractor extractor(config.features);
+    StepTimes steps;
+    std::map<int, int> rounds_run;  // rounds the whole detector ran -> frame pairs
+    for (size_t i = 1; i < frames.size(); ++i) {
+      const cv::Mat& previous = frames[i - 1].gray;
+      const cv::Mat& current = frames[i].gray;
+      const cv::Size size = current.size();
+      const auto previous_pyramid = steps.Time("klt pyramid (previous)",
+                                               [&] { return dynvo::BuildTrackingPyramid(previous, config.klt); });
+      const auto current_pyramid = steps.Time("klt pyramid (current)",
+                                              [&] { return dynvo::BuildTrackingPyramid(current, config.klt); });
+      const auto corners = steps.Time("corners", [&] { return dynvo::DetectCorners(current_pyramid, config.klt); });
+      const auto tracks = steps.Time(
+          "klt tracks", [&] { return dynvo::TrackPoints(current_pyramid, previous_pyramid, corners, config.klt); });
+      const auto h = steps.Time("homography (RANSAC + LM)", [&] {
+        return dynvo::EstimateHomography(tracks.current, tracks.previous, config.homography);
+      });
+      if (!h.ok) continue;
+      dynvo::CompensatedImage compensated;
+      steps.Time("compensate (warp + valid)", [&] {
+        dynvo::CompensateMotion(previous, h.current_from_previous, size, &compensated, area);
+      });
+      cv::Mat difference, binary;
+      steps.Time("absolute difference",
+                 [&] { dynvo::AbsoluteDifference(current, compensated.image, compensated.valid, &difference); });
+      const int threshold = steps.Time("threshold (otsu)", [&] {
+        return dynvo::DifferenceThreshold(difference, compensated.valid, mask_options);
+      });
+      steps.Time("binarize", [&] { dynvo::Binarize(difference, threshold, &binary); });
+      steps.Time("erode + dilate", [&] { dynvo::CleanMask(mask_options, &binary); });
+      cv::Mat warped;
+      steps.Time("warp binary mask (reverse pair)",
+                 [&] { dynvo::WarpBinaryMask(binary, h.current_from_previous.inverse(), size, &warped); });
+      steps.Time("static track flags", [&] { return dynvo::StaticPointFlags(binary, tracks.current); });
+      const auto features = steps.Time(
+          "orb features", [&] { return extractor.Extract(frames[i].gray, frames[i].depth, dataset.camera()); });
+      steps.Time("split by mask", [&] { return dynvo::SplitByMask(features, binary); });
+      // The whole detector as the pipeline calls it (its two directions on two threads, all rounds).
+      dynvo::DynamicMaskInput input;
+      input.previous_gray = previous;
+      input.current_gray = current;
+      input.previous_pyramid = previous_pyramid;
+      input.current_pyramid = current_pyramid;
+      input.image_area = area;
+      const auto mask = steps.Time("whole detector (threads, rounds)", [&] {
+        return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
+      });
+      ++rounds_run[mask.rounds_run];
+    }
+    std::printf("stage_costs: %zu frame pairs of %s, config %s\n", frames.size() - 1, dataset.name().c_str(),
+                config_path.empty() ? "built-in" : config_path.c_str());
+    steps.Print();
+    std::printf("rounds run by the whole detector:");
+    for (const auto& [rounds, pairs] : rounds_run) std::printf(" %d: %d pairs;", rounds, pairs);
+    std::printf("\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "stage_costs: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
