@@ -8,6 +8,15 @@
 #include "core/error.h"
 
 namespace dynvo {
+namespace {
+
+// Map points hold one ORB descriptor: 1 x 32 CV_8UC1.
+void CheckDescriptor(const cv::Mat& descriptor, const char* caller) {
+  if (descriptor.rows != 1 || descriptor.cols != 32 || descriptor.type() != CV_8UC1)
+    throw InputError(std::string("LocalMap::") + caller + ": a descriptor must be 1 x 32 CV_8UC1");
+}
+
+}  // namespace
 
 void LocalMapOptions::Check() const {
   if (max_keyframes < 2)
@@ -20,6 +29,7 @@ LocalMap::LocalMap(const LocalMapOptions& options) : options_(options) { options
 
 int64_t LocalMap::AddPoint(const Eigen::Vector3d& position_in_world, const cv::Mat& descriptor,
                            int64_t frame_index, float angle_deg) {
+  CheckDescriptor(descriptor, "AddPoint");
   MapPoint point;
   point.id = next_point_id_++;
   point.position_in_world = position_in_world;
@@ -76,6 +86,7 @@ void LocalMap::MarkSeen(int64_t point_id, int64_t frame_index) {
 }
 
 void LocalMap::SetAppearance(int64_t point_id, const cv::Mat& descriptor, float angle_deg) {
+  CheckDescriptor(descriptor, "SetAppearance");
   auto it = points_.find(point_id);
   if (it == points_.end()) return;
   descriptor.copyTo(it->second.descriptor);

@@ -338,16 +338,19 @@ void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double ma
   visible_ids_.clear();
   visible_points_.clear();
   visible_angles_.clear();
+  std::vector<const MapPoint*> visible;
+  visible.reserve(map_.num_points());
   for (const auto& [id, point] : map_.points()) {
     const Eigen::Vector3d p = camera_from_world * point.position_in_world;
     if (p.z() < 0.05 || !camera_.InImage(camera_.Project(p), margin_px)) continue;
     visible_ids_.push_back(id);
     visible_points_.push_back(point.position_in_world);
     visible_angles_.push_back(point.angle_deg);
+    visible.push_back(&point);
   }
-  visible_descriptors_.create(static_cast<int>(visible_ids_.size()), 32, CV_8UC1);
-  for (size_t i = 0; i < visible_ids_.size(); ++i)
-    map_.FindPoint(visible_ids_[i])->descriptor.copyTo(visible_descriptors_.row(static_cast<int>(i)));
+  visible_descriptors_.create(static_cast<int>(visible.size()), 32, CV_8UC1);
+  for (size_t i = 0; i < visible.size(); ++i)
+    std::memcpy(visible_descriptors_.ptr<uint8_t>(static_cast<int>(i)), visible[i]->descriptor.ptr<uint8_t>(), 32);
 }
 
 bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp,

@@ -120,5 +120,15 @@ TEST(LocalMap, SettersAndClear) {
   EXPECT_GT(map.AddPoint({0, 0, 1}, Descriptor(1), 1), a);  // ids keep increasing
 }
 
+TEST(LocalMap, RejectsDescriptorsThatAreNotOneOrbRow) {
+  LocalMap map;
+  EXPECT_THROW(map.AddPoint({0, 0, 1}, cv::Mat(1, 31, CV_8UC1, cv::Scalar(0)), 0), InputError);
+  EXPECT_THROW(map.AddPoint({0, 0, 1}, cv::Mat(2, 32, CV_8UC1, cv::Scalar(0)), 0), InputError);
+  EXPECT_THROW(map.AddPoint({0, 0, 1}, cv::Mat(1, 32, CV_32FC1, cv::Scalar(0)), 0), InputError);
+  const int64_t a = map.AddPoint({0, 0, 1}, Descriptor(1), 0);
+  EXPECT_THROW(map.SetAppearance(a, cv::Mat(), 0.0f), InputError);
+  EXPECT_EQ(map.FindPoint(a)->descriptor.at<uint8_t>(0, 0), 1);  // unchanged
+}
+
 }  // namespace
 }  // namespace dynvo
