@@ -19,8 +19,9 @@ the order of itertools.product over the parameters as listed (the last one varie
 
 Output layout: OUT/runs/<dataset folder name>/<point name>/ holds the dynvo-cli outputs
 (trajectory.txt, timing.csv, run.json), rpe.json, and point.json, written last: a run is
-finished when point.json matches the grid point, dataset and base config, so a run that
-was interrupted (or made with another base config) is redone and a finished one skipped.
+finished when point.json matches the grid point, dataset, base config and dynvo-cli binary
+(SHA-256), so a run that was interrupted (or made with another base config or build) is
+redone and a finished one skipped.
 Binaries come from $DYNVO_BIN_DIR (default: <repo>/build/bin).
 """
 
@@ -49,6 +50,22 @@ class SweepError(Exception):
 
 def bin_path(name):
     return os.path.join(os.environ.get("DYNVO_BIN_DIR") or os.path.join(ROOT, "build", "bin"), name)
+
+
+_BINARY_SHA256 = {}
+
+
+def binary_sha256(name):
+    """SHA-256 of a built tool, read once (None when it is not built)."""
+    if name not in _BINARY_SHA256:
+        if not os.path.isfile(bin_path(name)):
+            return None
+        digest = hashlib.sha256()
+        with open(bin_path(name), "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                digest.update(block)
+        _BINARY_SHA256[name] = digest.hexdigest()
+    return _BINARY_SHA256[name]
 
 
 def value_text(value):
@@ -239,6 +256,9 @@ class Run:
         self.dir = os.path.join(out, "runs", self.dataset_name, grid.names[index])
         self.expected = {"settings": self.point, "dataset": self.dataset,
                          "base_config": grid.base_config, "base_config_sha256": grid.base_sha256}
+        # A run made by another build of dynvo-cli may differ: it is redone, not reused.
+        if binary_sha256("dynvo-cli"):
+            self.expected["dynvo_cli_sha256"] = binary_sha256("dynvo-cli")
 
     def finished(self):
         try:

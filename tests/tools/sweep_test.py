@@ -8,6 +8,7 @@ Run by ctest (sweep_test) with DYNVO_BIN_DIR and DYNVO_SOURCE_DIR set:
 """
 
 import csv
+import hashlib
 import json
 import os
 import re
@@ -179,6 +180,22 @@ class SweepTest(unittest.TestCase):
         self.assertTrue(os.path.isfile(os.path.join(half, "point.json")))
         self.assertGreater(os.path.getsize(os.path.join(half, "trajectory.txt")), 0)
         self.assertEqual(os.path.getmtime(est), mtime)
+
+        # A run recorded by another build of dynvo-cli is redone; point.json names the binary.
+        with open(os.path.join(BIN, "dynvo-cli"), "rb") as f:
+            binary = hashlib.sha256(f.read()).hexdigest()
+        other = os.path.join(out, "runs", "seq", run_dirs(out)[1], "point.json")
+        with open(other) as f:
+            record = json.load(f)
+        self.assertEqual(record["dynvo_cli_sha256"], binary)
+        record["dynvo_cli_sha256"] = "0" * 64
+        with open(other, "w") as f:
+            json.dump(record, f)
+        r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--jobs", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("4 runs: 3 finished earlier (skipped), 1 to run", r.stderr)
+        with open(other) as f:
+            self.assertEqual(json.load(f)["dynvo_cli_sha256"], binary)
 
     def check_rejected(self, grid, *expected):
         path = self.write_grid("bad_grid.json", grid)
