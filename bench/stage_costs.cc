@@ -1,6 +1,7 @@
-// Single-thread cost of each step of the dynamic-mask front end and of feature extraction, on
-// consecutive frame pairs of a sequence: where the per-frame milliseconds of the paper pipeline
-// go before threads overlap them. Prints the median ms over frame pairs of each step.
+// Cost of each step of the dynamic-mask front end and of feature extraction run alone, one
+// after the other (OpenCV still splits some steps over its own threads), on consecutive frame
+// pairs of a sequence: where the per-frame milliseconds of the paper pipeline go before the
+// pipeline's threads overlap them. Prints the median ms over frame pairs of each step.
 //
 //   stage_costs --dataset DIR [--config configs/paper.json] [--frames 60] [--set key=value]...
 
@@ -56,14 +57,8 @@ class StepTimes {
   }
 
   void Print() const {
-    double total = 0.0;
-    std::printf("%-34s %9s\n", "step (one thread)", "median_ms");
-    for (const std::string& name : order_) {
-      const double m = Median(times_.at(name));
-      total += m;
-      std::printf("%-34s %9.3f\n", name.c_str(), m);
-    }
-    std::printf("%-34s %9.3f\n", "sum of medians", total);
+    std::printf("%-34s %9s\n", "step (run alone)", "median_ms");
+    for (const std::string& name : order_) std::printf("%-34s %9.3f\n", name.c_str(), Median(times_.at(name)));
   }
 
  private:
@@ -74,7 +69,7 @@ class StepTimes {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"stage_costs: single-thread cost of each step of the dynamic mask and of feature extraction"};
+  CLI::App app{"stage_costs: cost of each step of the dynamic mask and of feature extraction, run alone"};
   std::string dataset_dir, config_path;
   std::vector<std::string> overrides;
   int max_frames = 60;

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include <ceres/ceres.h>
 #include <opencv2/calib3d.hpp>
