@@ -31,23 +31,13 @@
 #include "dataset/tum_dataset.h"
 #include "odometry/odometry_config.h"
 #include "odometry/odometry_pipeline.h"
+#include "sample_statistics.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double Mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / v.size();
-}
+using dynvo::bench::Mean;
+using dynvo::bench::Median;
 
 struct MethodResult {
   std::string name;

@@ -27,17 +27,12 @@
 #include "features/feature_extractor.h"
 #include "features/feature_filter.h"
 #include "odometry/odometry_config.h"
+#include "sample_statistics.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using dynvo::bench::Median;
 
 // Collects named step times in the order steps were first timed.
 class StepTimes {
