@@ -27,6 +27,7 @@ Binaries come from $DYNVO_BIN_DIR (default: <repo>/build/bin).
 
 import argparse
 import concurrent.futures
+import functools
 import hashlib
 import itertools
 import json
@@ -52,20 +53,16 @@ def bin_path(name):
     return os.path.join(os.environ.get("DYNVO_BIN_DIR") or os.path.join(ROOT, "build", "bin"), name)
 
 
-_BINARY_SHA256 = {}
-
-
+@functools.lru_cache(maxsize=None)
 def binary_sha256(name):
     """SHA-256 of a built tool, read once (None when it is not built)."""
-    if name not in _BINARY_SHA256:
-        if not os.path.isfile(bin_path(name)):
-            return None
-        digest = hashlib.sha256()
-        with open(bin_path(name), "rb") as f:
-            for block in iter(lambda: f.read(1 << 20), b""):
-                digest.update(block)
-        _BINARY_SHA256[name] = digest.hexdigest()
-    return _BINARY_SHA256[name]
+    if not os.path.isfile(bin_path(name)):
+        return None
+    digest = hashlib.sha256()
+    with open(bin_path(name), "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
 
 
 def value_text(value):
