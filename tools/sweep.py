@@ -254,8 +254,9 @@ class Run:
         self.expected = {"settings": self.point, "dataset": self.dataset,
                          "base_config": grid.base_config, "base_config_sha256": grid.base_sha256}
         # A run made by another build of dynvo-cli may differ: it is redone, not reused.
-        if binary_sha256("dynvo-cli"):
-            self.expected["dynvo_cli_sha256"] = binary_sha256("dynvo-cli")
+        binary = binary_sha256("dynvo-cli")
+        if binary:
+            self.expected["dynvo_cli_sha256"] = binary
 
     def finished(self):
         try:
