@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Accuracy targets of the odometry (issue 4): per-second RPE of the paper, tuned
-# (configs/tuned.json) and baseline configs, and of the paper config with masked features never
-# readmitted (`--set tracking.readmit_masked_px=0`, "paper, strict": the paper's literal rule), on
+# (configs/tuned.json) and baseline configs, and of the paper config without its two additions
+# (`--set dynamic_mask.min_otsu_threshold=0 --set tracking.readmit_masked_px=0`, "paper, strict":
+# Otsu alone, masked features never readmitted, the paper's literal method), on
 #  - generated dynamic sequences, each against its twin without people (same camera path):
 #    synthetic scenes, and people inserted into the real fr1_rpy_head150 (when ../shared exists);
 #  - the real static sequences in ../shared/data/tum (paper vs baseline).
-# Writes bench/results/accuracy.md (Markdown) and accuracy.csv; prints the table.
+# Writes bench/results/accuracy.md (Markdown) and accuracy.csv; prints the table. Also
+# otsu_thresholds.md: the distribution of Otsu's threshold per sequence in the strict runs.
 # The real sequences (fr1 alone and with inserted people, fr2) are short and chaotic: a different
 # RANSAC draw (or a change in the last digits of any computation) moves fr1's per-second RPE by
 # +-20%. They are also run with RANSAC seeds 1..SEEDS (ego_motion.seed and pose.seed) and summarised
@@ -19,7 +21,7 @@ work="${DYNVO_BENCH_DIR:-$root/out/bench/accuracy}"
 frames="${FRAMES:-300}"
 seed="${SEED:-1}"
 seeds="${SEEDS:-20}"
-strict=(--set tracking.readmit_masked_px=0)  # the paper's rule: masked features stay out
+strict=(--set dynamic_mask.min_otsu_threshold=0 --set tracking.readmit_masked_px=0)  # the paper's literal method
 results="$root/bench/results"
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -30,12 +32,20 @@ sequences="$work/seq"
 DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$shared" bash "$root/tools/make_sequences.sh" \
   --out "$sequences" --frames "$frames" --seed "$seed" >/dev/null
 
+# run_dir <sequence dir> <mode> [--set k=v...]: where run puts that run
+run_dir() {
+  local out="$work/runs/$(basename "$1")_$2"
+  shift 2
+  [ $# -gt 0 ] && out="${out}_$(echo "$*" | tr -c 'a-z0-9=\n' '_')"
+  echo "$out"
+}
+
 # run <sequence dir> <mode> [--set k=v...]
 #   -> prints "rpe_rmse mask_iou processing_median_ms per_frame_rpe_rmse"
 run() {
-  local seq="$1" mode="$2" out="$work/runs/$(basename "$1")_$2"
+  local seq="$1" mode="$2" out
+  out="$(run_dir "$@")"
   shift 2
-  [ $# -gt 0 ] && out="${out}_$(echo "$*" | tr -c 'a-z0-9=\n' '_')"
   "$bin/dynvo-cli" run --quiet --force --dataset "$seq" --config "$root/configs/$mode.json" --out "$out" "$@"
   "$bin/rpe" "$seq/groundtruth.txt" "$out/trajectory.txt" --json > "$out/rpe.json"
   "$bin/rpe" "$seq/groundtruth.txt" "$out/trajectory.txt" --delta 1 --delta-unit f --json \
@@ -53,16 +63,21 @@ PY
 }
 
 csv="$results/accuracy.csv"
+otsu_list="$work/otsu_runs.txt"  # "name<TAB>timing.csv of the strict run", one a line
+: > "$otsu_list"
 echo "sequence,kind,twin,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,twin_paper_rpe,twin_paper_strict_rpe,twin_tuned_rpe,paper_mask_iou,tuned_mask_iou,paper_ms,baseline_ms" > "$csv"
 row() {  # name kind seq twin_seq_or_empty
   local name="$1" kind="$2" seq="$3" twin="$4"
   read -r p_rpe p_iou p_ms _ < <(run "$seq" paper)
   read -r s_rpe _ _ _ < <(run "$seq" paper "${strict[@]}")
+  printf '%s\t%s\n' "$name" "$(run_dir "$seq" paper "${strict[@]}")/timing.csv" >> "$otsu_list"
   read -r u_rpe u_iou _ _ < <(run "$seq" tuned)
   read -r b_rpe _ b_ms _ < <(run "$seq" baseline)
   local t_rpe="" ts_rpe="" tu_rpe=""
   [ -n "$twin" ] && read -r t_rpe _ _ _ < <(run "$twin" paper)
   [ -n "$twin" ] && read -r ts_rpe _ _ _ < <(run "$twin" paper "${strict[@]}")
+  [ -n "$twin" ] && printf '%s\t%s\n' "$(basename "$twin")" \
+    "$(run_dir "$twin" paper "${strict[@]}")/timing.csv" >> "$otsu_list"
   [ -n "$twin" ] && read -r tu_rpe _ _ _ < <(run "$twin" tuned)
   echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$s_rpe,$u_rpe,$b_rpe,$t_rpe,$ts_rpe,$tu_rpe,$p_iou,$u_iou,$p_ms,$b_ms" >> "$csv"
   echo "accuracy: $name done" >&2
@@ -89,6 +104,8 @@ fi
 
 python3 "$root/bench/accuracy_table.py" "$csv" "$frames" "$seed" > "$results/accuracy.md"
 cat "$results/accuracy.md"
+python3 "$root/bench/otsu_thresholds_table.py" "$otsu_list" > "$results/otsu_thresholds.md"
+cat "$results/otsu_thresholds.md"
 
 # The real sequences again, over RANSAC seeds.
 seeds_csv="$results/accuracy_seeds.csv"

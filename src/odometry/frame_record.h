@@ -36,6 +36,8 @@ struct FrameRecord {
   bool mask_ok = false;       // a dynamic mask was computed this frame
   std::string mask_note;      // why not, when the mask stage is on and failed
   double dynamic_ratio = 0;   // share of pixels marked dynamic
+  int mask_threshold = -1;    // grey level the forward difference was binarised at (last round);
+                              // -1 when no mask was computed
   TrackingState state = TrackingState::kInitializing;
   std::string tracking_note;
   int num_matches = 0;

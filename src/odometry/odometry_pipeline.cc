@@ -106,6 +106,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
       if (mask.ok) {
         last_mask_ = mask.mask;
         record.dynamic_ratio = mask.dynamic_ratio;
+        record.mask_threshold = mask.forward_threshold;
       }
       if (debug) {
         debug->compensated = mask.compensated;

@@ -1,6 +1,7 @@
 #include "odometry/timing_csv.h"
 
 #include <cstdio>
+#include <string>
 
 #include "core/error.h"
 
@@ -29,7 +30,7 @@ std::string Fixed(double v, int decimals) {
 const char* TimingCsvWriter::Header() {
   return "frame,stamp,load_ms,dynamic_mask_ms,features_ms,filter_ms,match_ms,pose_ms,map_ms,"
          "local_ba_ms,processing_ms,features_total,features_kept,features_removed,features_readmitted,"
-         "dynamic_ratio,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,keyframe,"
+         "dynamic_ratio,mask_threshold,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,keyframe,"
          "mask_precision,mask_recall,mask_iou";
 }
 
@@ -47,7 +48,9 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
        << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ',' << Fixed(t.processing_ms, 3)
        << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed << ','
        << r.features_readmitted << ','
-       << Fixed(r.dynamic_ratio, 5) << ',' << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
+       << Fixed(r.dynamic_ratio, 5) << ','
+       << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ','
+       << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
        << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches << ','
        << r.num_inliers << ',' << (r.keyframe ? 1 : 0) << ',';
   if (r.mask_quality) {

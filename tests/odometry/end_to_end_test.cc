@@ -3,8 +3,12 @@
 // 1): per-second RPE 0.0048 m/s in paper mode, 0.0213 m/s in the baseline. The bounds leave
 // about 2x headroom on each side.
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -42,11 +46,13 @@ class EndToEnd : public ::testing::Test {
     dir_ = nullptr;
   }
 
-  // Runs dynvo-cli's job with `config` into a fresh folder; returns that folder.
-  static std::string Run(const std::string& config, const std::string& name) {
+  // Runs dynvo-cli's job with `config` (and `overrides`) into a fresh folder; returns that folder.
+  static std::string Run(const std::string& config, const std::string& name,
+                         const std::vector<std::string>& overrides = {}) {
     RunRequest request;
     request.dataset = sequence_;
     request.config_path = ConfigPath(config);
+    request.overrides = overrides;
     request.out_dir = (dir_->path() / name).string();
     request.quiet = true;
     RunOdometry(request);
@@ -86,6 +92,48 @@ TEST_F(EndToEnd, PaperModeIsAccurateAndTheBaselineIsNot) {
   EXPECT_GT(report["mask_quality"]["recall"].get<double>(), 0.1);
   EXPECT_GT(report["mask_quality"]["precision"].get<double>(), 0.3);
   EXPECT_TRUE(nlohmann::json::parse(ReadTextFile(baseline + "/run.json"))["mask_quality"].is_null());
+}
+
+// The `mask_threshold` column of timing.csv, one entry per row ("" = no mask that frame). The
+// columns up to it are numbers, so splitting on commas is safe that far.
+std::vector<std::string> MaskThresholds(const std::string& out_dir) {
+  std::ifstream timing(out_dir + "/timing.csv");
+  std::vector<std::string> values;
+  std::string line;
+  std::getline(timing, line);
+  const std::string header = line.substr(0, line.find("mask_threshold"));
+  const auto column = static_cast<size_t>(std::count(header.begin(), header.end(), ','));
+  while (std::getline(timing, line)) {
+    std::stringstream fields(line);
+    std::string field;
+    for (size_t i = 0; i <= column; ++i) std::getline(fields, field, ',');
+    values.push_back(field);
+  }
+  return values;
+}
+
+TEST_F(EndToEnd, TimingRecordsTheThresholdOfEachMaskAndPaperModeFloorsOtsu) {
+  // paper.json raises Otsu's threshold to at least 25 grey levels; Otsu alone goes below that
+  // on frames where the people are small or far, and above it where they are close.
+  const std::vector<std::string> floored = MaskThresholds(Run("paper.json", "floored"));
+  const std::vector<std::string> otsu =
+      MaskThresholds(Run("paper.json", "otsu", {"dynamic_mask.min_otsu_threshold=0"}));
+  ASSERT_EQ(floored.size(), 120u);
+  ASSERT_EQ(otsu.size(), 120u);
+  EXPECT_EQ(floored[0], "") << "the first frame has no mask";
+  int below_floor = 0, above_floor = 0, masks = 0;
+  for (size_t i = 1; i < otsu.size(); ++i) {
+    if (otsu[i].empty()) continue;
+    ++masks;
+    below_floor += std::stoi(otsu[i]) < 25;
+    above_floor += std::stoi(otsu[i]) > 25;
+    if (!floored[i].empty()) {
+      EXPECT_GE(std::stoi(floored[i]), 25) << "frame " << i;
+    }
+  }
+  EXPECT_GT(masks, 100);
+  EXPECT_GT(below_floor, 0);
+  EXPECT_GT(above_floor, 0);
 }
 
 TEST_F(EndToEnd, SameInputGivesTheSameTrajectory) {
