@@ -1,7 +1,9 @@
 // The whole odometry on a generated dynamic sequence whose truth is known: two people cross
 // the view of a camera moving along x/y/z. Measured when written (120 frames, 640x480, seed
-// 1): per-second RPE 0.0048 m/s in paper mode, 0.0213 m/s in the baseline. The bounds leave
-// about 2x headroom on each side.
+// 1): per-second RPE 0.0048 m/s in paper mode, 0.0213 m/s in the baseline; with paper.json's
+// floor under Otsu (dynvo-synth --scenario two_crossing --camera-path xyz --frames 120 --seed
+// 1, then dynvo-cli run and rpe) 0.0041 and 0.0183. The bounds leave about 2x headroom on
+// each side.
 
 #include <algorithm>
 #include <filesystem>
