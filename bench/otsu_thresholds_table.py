@@ -1,11 +1,14 @@
 """Markdown table of the grey level Otsu's method picks for the difference image, per sequence.
 
 Input: a text file of "name<TAB>timing.csv" lines (runs with no floor under Otsu, written by
-bench/accuracy.sh); a timing.csv listed twice is shown once, under its first name. Reads the `mask_threshold` column of
-each timing.csv (frames without a mask have it empty and are skipped).
+bench/accuracy.sh); a timing.csv listed twice is shown once, under its first name. Reads the
+`mask_threshold` column of each timing.csv (frames without a mask have it empty and are
+skipped), and the floor configs/paper.json sets (`dynamic_mask.min_otsu_threshold`).
     python3 bench/otsu_thresholds_table.py LIST > otsu_thresholds.md
 """
 import csv
+import json
+import os
 import sys
 
 
@@ -17,7 +20,9 @@ def quantile(sorted_values, q):
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: otsu_thresholds_table.py LIST")
-    floor = 25
+    paper = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "configs", "paper.json")
+    with open(paper) as f:
+        floor = json.load(f)["dynamic_mask"]["min_otsu_threshold"]
     print("Grey level Otsu's method picks for the motion-compensated difference image, per frame "
           "(`mask_threshold` in timing.csv), in the \"paper, strict\" runs of the accuracy table "
           "(no floor under Otsu). configs/paper.json raises it to at least %d. "
