@@ -85,6 +85,16 @@ void LocalMap::MarkSeen(int64_t point_id, int64_t frame_index) {
     it->second.last_seen_frame = std::max(it->second.last_seen_frame, frame_index);
 }
 
+void LocalMap::SetUnconfirmedFrames(int64_t point_id, int frames) {
+  auto it = points_.find(point_id);
+  if (it != points_.end()) it->second.unconfirmed_frames = std::max(frames, 0);
+}
+
+void LocalMap::Confirm(int64_t point_id) {
+  auto it = points_.find(point_id);
+  if (it != points_.end() && it->second.unconfirmed_frames > 0) --it->second.unconfirmed_frames;
+}
+
 void LocalMap::SetAppearance(int64_t point_id, const cv::Mat& descriptor, float angle_deg) {
   CheckDescriptor(descriptor, "SetAppearance");
   auto it = points_.find(point_id);

@@ -42,6 +42,11 @@ class LocalMap {
 
   // Records that a point was matched in a frame (no-op for an unknown id).
   void MarkSeen(int64_t point_id, int64_t frame_index);
+  // Sets how many frames must still confirm a point (>= 0; no-op for an unknown id).
+  void SetUnconfirmedFrames(int64_t point_id, int frames);
+  // One frame confirmed the point: its unconfirmed_frames drops by one, down to 0 (no-op for an
+  // unknown id).
+  void Confirm(int64_t point_id);
   // Replaces a point's descriptor and its ORB angle (no-op for an unknown id).
   void SetAppearance(int64_t point_id, const cv::Mat& descriptor, float angle_deg);
   // Moves a point (no-op for an unknown id).

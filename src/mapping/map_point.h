@@ -16,6 +16,8 @@ struct MapPoint {
   int observations = 0;            // number of kept keyframes that observe it
   int64_t first_frame = -1;        // index of the frame that created it
   int64_t last_seen_frame = -1;    // index of the last frame it was matched in
+  int unconfirmed_frames = 0;      // frames that must still confirm it before tracking trusts it
+                                   // (0 = trusted; see tracking/new_point_confirmation.h)
 };
 
 }  // namespace dynvo

@@ -178,6 +178,12 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
           "map within this reprojection error (pixels) of the pose estimated without them; 0 = off");
   r->Bind("tracking.readmit_rms_factor", &t->readmit_rms_factor,
           "... and within this many times the RMS reprojection error of that pose's inliers");
+  r->Bind("tracking.new_point_confirmations", &t->new_point_confirmations,
+          "points a keyframe makes join the pose only after this many frames confirmed them "
+          "(seen where the pose from the trusted points projects them); 0 = off");
+  r->Bind("tracking.new_point_max_shift_m", &t->new_point_max_shift_m,
+          "... a frame checks its unconfirmed points when they move its camera centre by more "
+          "than this from the pose of the trusted points (metres)");
   r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
           "match again this close to the first pose estimate and refine once more (0 = off)");
   // run

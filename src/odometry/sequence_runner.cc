@@ -65,7 +65,7 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
-  long long features_removed = 0, features_readmitted = 0;
+  long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -86,6 +86,7 @@ struct RunTally {
     mask_failed += !r.mask_ok && !r.mask_note.empty();
     features_removed += r.features_removed;
     features_readmitted += r.features_readmitted;
+    new_points_rejected += r.new_points_rejected;
     if (r.mask_quality) {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
@@ -185,7 +186,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                       {"masks_computed", tally.mask_computed},
                       {"masks_failed", tally.mask_failed},
                       {"features_removed", tally.features_removed},
-                      {"features_readmitted", tally.features_readmitted}};
+                      {"features_readmitted", tally.features_readmitted},
+                      {"new_points_rejected", tally.new_points_rejected}};
   nlohmann::json stages;
   for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
   report["time"] = {{"processing_ms", Summary(tally.processing)},

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "features/feature_filter.h"
+#include "tracking/new_point_confirmation.h"
 #include "tracking/static_verification.h"
 
 namespace dynvo {
@@ -63,6 +64,12 @@ void TrackerOptions::Check() const {
   if (!(rematch_radius_px >= 0.0))
     throw InputError("tracking.rematch_radius_px must be >= 0, got " +
                      std::to_string(rematch_radius_px));
+  if (new_point_confirmations < 0)
+    throw InputError("tracking.new_point_confirmations must be >= 0, got " +
+                     std::to_string(new_point_confirmations));
+  if (!(new_point_max_shift_m >= 0.0))
+    throw InputError("tracking.new_point_max_shift_m must be >= 0, got " +
+                     std::to_string(new_point_max_shift_m));
   if (lost_frames_before_reseed < 1)
     throw InputError("tracking.lost_frames_before_reseed must be >= 1, got " +
                      std::to_string(lost_frames_before_reseed));
@@ -128,6 +135,8 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
                           options_.readmit_masked_px > 0.0 &&
                           ReadmitStaticFeatures(features, *masked, joined, matches, estimate, result);
   const FrameFeatures& used = readmitted ? joined : features;
+  if (estimate.ok && options_.new_point_confirmations > 0)
+    ConfirmNewMapPoints(used, matches, estimate, result);
 
   const Clock::time_point start = Clock::now();
   if (estimate.ok) {
@@ -334,10 +343,34 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   return true;
 }
 
+void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
+                                       const std::vector<Match>& matches, PoseEstimate& estimate,
+                                       TrackingResult& result) {
+  const Clock::time_point start = Clock::now();
+  const size_t n = matches.size();
+  std::vector<Eigen::Vector3d> points(n);
+  std::vector<Eigen::Vector2d> pixels(n);
+  std::vector<uint8_t> unconfirmed(n);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t p = static_cast<size_t>(matches[i].point_index);
+    points[i] = visible_points_[p];
+    pixels[i] = features.pixels[static_cast<size_t>(matches[i].feature_index)];
+    unconfirmed[i] = visible_unconfirmed_[p];
+  }
+  NewPointConfirmation checked = ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_,
+                                                  options_.pose, options_.new_point_max_shift_m);
+  for (size_t i = 0; i < n; ++i)
+    if (checked.confirmed[i]) map_.Confirm(visible_ids_[static_cast<size_t>(matches[i].point_index)]);
+  result.new_points_rejected = checked.rejected;
+  estimate = std::move(checked.estimate);
+  result.pose_ms += MillisecondsSince(start);
+}
+
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {
   visible_ids_.clear();
   visible_points_.clear();
   visible_angles_.clear();
+  visible_unconfirmed_.clear();
   std::vector<const MapPoint*> visible;
   visible.reserve(map_.num_points());
   for (const auto& [id, point] : map_.points()) {
@@ -346,6 +379,7 @@ void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double ma
     visible_ids_.push_back(id);
     visible_points_.push_back(point.position_in_world);
     visible_angles_.push_back(point.angle_deg);
+    visible_unconfirmed_.push_back(point.unconfirmed_frames > 0 ? 1 : 0);
     visible.push_back(&point);
   }
   visible_descriptors_.create(static_cast<int>(visible.size()), 32, CV_8UC1);
@@ -420,6 +454,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
                                      features.descriptors.row(static_cast<int>(i)), frame_index_,
                                      features.keypoints[i].angle);
     keyframe.observations.push_back({id, features.pixels[i], ba_depth(features.depths[i])});
+    map_.SetUnconfirmedFrames(id, options_.new_point_confirmations);
   }
   map_.AddKeyframe(std::move(keyframe));
   result.keyframe_inserted = true;

@@ -45,6 +45,13 @@ struct TrackerOptions {
                                        // masked features stay out; >= 0) ...
   double readmit_rms_factor = 2.0;     // ... and within this many times the RMS error of that
                                        // pose's inliers (> 0)
+  int new_point_confirmations = 0;     // points a keyframe makes join the pose only after this
+                                       // many frames confirmed them (see
+                                       // tracking/new_point_confirmation.h; 0 = off: trusted at
+                                       // once; >= 0) ...
+  double new_point_max_shift_m = 0.003;  // ... a frame checks them when they move its camera
+                                       // centre by more than this from the pose of the trusted
+                                       // points (metres, >= 0)
 
   // Throws InputError naming the key ("tracking.min_matches ...", "pose.min_inliers ...")
   // when this or any sub-option is out of range.
@@ -63,6 +70,8 @@ struct TrackingResult {
   bool keyframe_inserted = false;
   int map_keyframes = 0;          // local map size after this frame
   int map_points = 0;
+  int new_points_rejected = 0;    // matches to unconfirmed map points left out of the pose
+                                  // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;  // false: the new keyframe's depths were left out of BA
                                      // (see max_ba_depth_rotation_deg_s)
   double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only; with
@@ -108,6 +117,10 @@ class FrameTracker {
   bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
                              FrameFeatures& joined, std::vector<Match>& matches,
                              PoseEstimate& estimate, TrackingResult& result);
+  // Applies ConfirmNewPoints to the estimate's matches (`features` is what they index):
+  // confirms the points it accepts in the map, replaces `estimate` and counts the rejected ones.
+  void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches,
+                           PoseEstimate& estimate, TrackingResult& result);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
@@ -137,6 +150,7 @@ class FrameTracker {
   std::vector<int64_t> visible_ids_;
   std::vector<Eigen::Vector3d> visible_points_;
   std::vector<float> visible_angles_;  // ORB angle of each point's reference observation
+  std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
   cv::Mat visible_descriptors_;
   // The local BA started at the last keyframe with local_ba.background (declared last so that
   // it is destroyed, and so waited for, before the map it works on).

@@ -114,6 +114,16 @@ TEST(LocalMap, SettersAndClear) {
   EXPECT_EQ(map.FindPoint(a)->descriptor.at<uint8_t>(0, 0), 9);
   EXPECT_EQ(map.keyframes().front().camera_from_world.translation().x(), 0.5);
   EXPECT_THROW(map.SetKeyframePose(1, Pose::Identity()), std::out_of_range);
+  EXPECT_EQ(map.FindPoint(a)->unconfirmed_frames, 0);  // trusted unless told otherwise
+  map.SetUnconfirmedFrames(a, 2);
+  map.Confirm(a);
+  EXPECT_EQ(map.FindPoint(a)->unconfirmed_frames, 1);
+  map.Confirm(a);
+  map.Confirm(a);
+  EXPECT_EQ(map.FindPoint(a)->unconfirmed_frames, 0);
+  map.SetUnconfirmedFrames(a, -3);
+  EXPECT_EQ(map.FindPoint(a)->unconfirmed_frames, 0);
+  map.Confirm(a + 100);  // unknown ids are ignored
   map.Clear();
   EXPECT_EQ(map.num_keyframes(), 0u);
   EXPECT_EQ(map.num_points(), 0u);

@@ -32,12 +32,15 @@ TEST(OdometryConfig, PaperConfigHasThePapersParameters) {
   EXPECT_NE(c.dynamic_mask.backward, BackwardMode::kNone);
 }
 
-TEST(OdometryConfig, BaselineDiffersOnlyByTheMaskSwitch) {
+TEST(OdometryConfig, BaselineDiffersOnlyByTheDynamicHandling) {
   nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
   nlohmann::json baseline = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("baseline.json"), {}));
   EXPECT_EQ(baseline["dynamic_mask"]["enabled"], false);
-  paper["dynamic_mask"].erase("enabled");
-  baseline["dynamic_mask"].erase("enabled");
+  // The dynamic handling: the mask stage, and new map points confirmed before they are trusted.
+  EXPECT_GT(paper["tracking"]["new_point_confirmations"], 0);
+  EXPECT_EQ(baseline["tracking"]["new_point_confirmations"], 0);
+  paper["tracking"].erase("new_point_confirmations");
+  baseline["tracking"].erase("new_point_confirmations");
   // Mask parameters are irrelevant when the stage is off; all other stages must be identical.
   paper.erase("dynamic_mask");
   baseline.erase("dynamic_mask");
