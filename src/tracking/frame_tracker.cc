@@ -201,15 +201,6 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
                                 predicted_camera_from_world, options_.matching, &visible_angles_);
   result.match_ms = MillisecondsSince(start);
 
-  auto correspondences = [&](const std::vector<Match>& m, std::vector<Eigen::Vector3d>& points,
-                             std::vector<Eigen::Vector2d>& pixels) {
-    points.clear();
-    pixels.clear();
-    for (const Match& match : m) {
-      points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
-      pixels.push_back(features.pixels[static_cast<size_t>(match.feature_index)]);
-    }
-  };
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
 
@@ -218,7 +209,7 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
   PoseEstimate estimate;
   failure.clear();
   if (static_cast<int>(matches.size()) >= options_.min_matches) {
-    correspondences(matches, points, pixels);
+    Correspondences(features, matches, points, pixels);
     estimate = RefinePose(points, pixels, camera_, predicted_camera_from_world, options_.pose);
     if (estimate.ok && estimate.num_inliers < options_.min_matches) {
       estimate.ok = false;
@@ -244,7 +235,7 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
     result.match_ms += MillisecondsSince(t0);
     t0 = Clock::now();
     if (static_cast<int>(rematched.size()) >= options_.min_matches) {
-      correspondences(rematched, points, pixels);
+      Correspondences(features, rematched, points, pixels);
       PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world,
                                        options_.pose);
       if (second.ok && second.num_inliers >= current.num_inliers) {
@@ -264,7 +255,7 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
     result.match_ms += MillisecondsSince(start);
     start = Clock::now();
     if (static_cast<int>(matches.size()) >= options_.min_matches) {
-      correspondences(matches, points, pixels);
+      Correspondences(features, matches, points, pixels);
       estimate = EstimatePose(points, pixels, camera_, options_.pose);
       if (estimate.ok && estimate.num_inliers < options_.min_matches) {
         estimate.ok = false;
@@ -305,12 +296,7 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   const size_t n = matches.size();
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
-  points.reserve(n + verified.size());
-  pixels.reserve(n + verified.size());
-  for (const Match& match : matches) {
-    points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
-    pixels.push_back(features.pixels[static_cast<size_t>(match.feature_index)]);
-  }
+  Correspondences(features, matches, points, pixels);
   for (const Match& match : verified) {
     points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
     pixels.push_back(masked.pixels[static_cast<size_t>(match.feature_index)]);
@@ -343,20 +329,32 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   return true;
 }
 
+void FrameTracker::Correspondences(const FrameFeatures& features, const std::vector<Match>& matches,
+                                   std::vector<Eigen::Vector3d>& points,
+                                   std::vector<Eigen::Vector2d>& pixels) const {
+  points.clear();
+  pixels.clear();
+  for (const Match& match : matches) {
+    points.push_back(visible_points_[static_cast<size_t>(match.point_index)]);
+    pixels.push_back(features.pixels[static_cast<size_t>(match.feature_index)]);
+  }
+}
+
 void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
                                        const std::vector<Match>& matches, PoseEstimate& estimate,
                                        TrackingResult& result) {
-  const Clock::time_point start = Clock::now();
   const size_t n = matches.size();
-  std::vector<Eigen::Vector3d> points(n);
-  std::vector<Eigen::Vector2d> pixels(n);
   std::vector<uint8_t> unconfirmed(n);
+  bool any = false;
   for (size_t i = 0; i < n; ++i) {
-    const size_t p = static_cast<size_t>(matches[i].point_index);
-    points[i] = visible_points_[p];
-    pixels[i] = features.pixels[static_cast<size_t>(matches[i].feature_index)];
-    unconfirmed[i] = visible_unconfirmed_[p];
+    unconfirmed[i] = visible_unconfirmed_[static_cast<size_t>(matches[i].point_index)];
+    any = any || (unconfirmed[i] && estimate.inliers[i]);
   }
+  if (!any) return;  // most frames: nothing to check
+  const Clock::time_point start = Clock::now();
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  Correspondences(features, matches, points, pixels);
   NewPointConfirmation checked = ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_,
                                                   options_.pose, options_.new_point_max_shift_m);
   for (size_t i = 0; i < n; ++i)

@@ -117,6 +117,10 @@ class FrameTracker {
   bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
                              FrameFeatures& joined, std::vector<Match>& matches,
                              PoseEstimate& estimate, TrackingResult& result);
+  // The map points (visible_points_) and pixels of `matches` into `features`, in match order.
+  void Correspondences(const FrameFeatures& features, const std::vector<Match>& matches,
+                       std::vector<Eigen::Vector3d>& points,
+                       std::vector<Eigen::Vector2d>& pixels) const;
   // Applies ConfirmNewPoints to the estimate's matches (`features` is what they index):
   // confirms the points it accepts in the map, replaces `estimate` and counts the rejected ones.
   void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches,

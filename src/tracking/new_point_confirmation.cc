@@ -12,10 +12,6 @@ namespace {
 // within the pose's outlier bar): the rule the readmission of masked features uses.
 constexpr double kConfirmRmsFactor = 2.0;
 
-Eigen::Vector3d CameraCentre(const Pose& camera_from_world) {
-  return -(camera_from_world.linear().transpose() * camera_from_world.translation());
-}
-
 }  // namespace
 
 NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points_in_world,
@@ -46,8 +42,8 @@ NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points
   const PoseEstimate from_trusted =
       RefinePose(points_in_world, pixels, camera, estimate.camera_from_world, pose, &trusted);
   if (from_trusted.ok)
-    out.shift_m = (CameraCentre(estimate.camera_from_world) -
-                   CameraCentre(from_trusted.camera_from_world)).norm();
+    out.shift_m = (estimate.camera_from_world.inverse().translation() -
+                   from_trusted.camera_from_world.inverse().translation()).norm();
   if (!from_trusted.ok || out.shift_m <= max_shift_m) {
     for (size_t i = 0; i < n; ++i) out.confirmed[i] = unconfirmed[i] && estimate.inliers[i];
     return out;

@@ -9,10 +9,6 @@
 namespace dynvo {
 namespace {
 
-Eigen::Vector3d CameraCentre(const Pose& camera_from_world) {
-  return -(camera_from_world.linear().transpose() * camera_from_world.translation());
-}
-
 // The situation of a frame just after a keyframe (the truth is known): a trusted background on a
 // wall about 4 m away, a person 1.7 m away whose points the keyframe made (unconfirmed) and who
 // has since moved sideways by `person_shift_px` in the image, and unconfirmed points the keyframe
@@ -44,7 +40,7 @@ class ConfirmNewPointsTest : public ::testing::Test {
     ASSERT_TRUE(full_.ok);
   }
   double CentreError(const Pose& camera_from_world) const {
-    return (CameraCentre(camera_from_world) - CameraCentre(truth_)).norm();
+    return (camera_from_world.inverse().translation() - truth_.inverse().translation()).norm();
   }
 
   Camera camera_;
