@@ -17,8 +17,8 @@ namespace dynvo {
 
 struct LocalMapOptions {
   // 20 keyframes: a camera that swings back (rpy, halfsphere) finds the background it saw
-  // before a person walked in front of it; with 8, about a seventh fewer frame matches on the
-  // generated sequences and 20-35% more per-second drift (README, Config, "Local map size").
+  // before a person walked in front of it; with 8 it matched fewer points and drifted more
+  // (README, Config, "Local map size").
   int max_keyframes = 20;  // keyframes kept (>= 2)
   int max_points = 8000;   // map points kept (>= 1)
   // Throws InputError naming the key ("map.max_keyframes ...") when a value is out of range.
