@@ -32,12 +32,12 @@ rpe_of() {
 
 csv="$results/scene_seeds.csv"
 echo "scene_seed,sequence,twin,paper_rpe,baseline_rpe,twin_paper_rpe,twin_baseline_rpe" > "$csv"
+declare -A twin_rpe=()  # "<twin>.<mode>" -> RPE, per scene seed
 for s in $scene_seeds; do
   seq="$work/seed$s/seq"
   # No shared data here: only the synthetic sequences are generated.
   DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$work/no_shared" bash "$root/tools/make_sequences.sh" \
     --out "$seq" --frames "$frames" --seed "$s" >/dev/null
-  declare -A twin_rpe=()
   for twin in synth_none_xyz synth_none_rpy synth_none_halfsphere; do
     for mode in paper baseline; do
       twin_rpe[$twin.$mode]="$(rpe_of "$seq/$twin" "$mode" "$work/seed$s/runs/${twin}_$mode")"
@@ -50,7 +50,6 @@ for s in $scene_seeds; do
     b="$(rpe_of "$seq/$name" baseline "$work/seed$s/runs/${name}_baseline")"
     echo "$s,$name,$twin,$p,$b,${twin_rpe[$twin.paper]},${twin_rpe[$twin.baseline]}" >> "$csv"
   done
-  unset twin_rpe
   echo "scene_seeds: seed $s done" >&2
 done
 

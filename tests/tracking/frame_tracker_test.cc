@@ -31,12 +31,27 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Per-frame relative pose error (translation metres, rotation degrees) between frames i-1 and i.
-std::pair<double, double> FrameError(const Pose& est_prev, const Pose& est, const Pose& true_prev,
-                                     const Pose& truth) {
-  const Pose error = (true_prev.inverse() * truth).inverse() * (est_prev.inverse() * est);
-  return {error.translation().norm(), RotationAngle(error) * kRadToDeg};
-}
+// Per-frame relative pose error along a tracked path: each call takes one frame's estimated
+// and true world_from_camera and returns the error (translation metres, rotation degrees) of
+// the motion since the previous call's frame; {0, 0} on the first call.
+class StepError {
+ public:
+  std::pair<double, double> Next(const Pose& est, const Pose& truth) {
+    std::pair<double, double> result{0.0, 0.0};
+    if (started_) {
+      const Pose error = (true_prev_.inverse() * truth).inverse() * (est_prev_.inverse() * est);
+      result = {error.translation().norm(), RotationAngle(error) * kRadToDeg};
+    }
+    est_prev_ = est;
+    true_prev_ = truth;
+    started_ = true;
+    return result;
+  }
+
+ private:
+  bool started_ = false;
+  Pose est_prev_, true_prev_;
+};
 
 struct Run {
   std::vector<TrackingResult> results;
@@ -107,13 +122,14 @@ TEST(FrameTracker, RecoversSyntheticPath) {
   FrameTracker tracker(world.camera, TrackerOptions{});
   const Pose first = SmoothPath(0);
   std::vector<double> t_err, r_err, track_ms, ba_ms;
-  Pose est_prev, true_prev;
+  StepError steps;
   double final_error = 0;
   int keyframes = 0;
   for (int i = 0; i < 200; ++i) {
     const Pose truth = first.inverse() * SmoothPath(i);
     const FrameFeatures f = test::Render(world, SmoothPath(i).inverse(), render, rng);
     const TrackingResult r = tracker.Track(f, i / kFrameRate);
+    const auto [t, rot] = steps.Next(r.world_from_camera, truth);
     if (i == 0) {
       EXPECT_EQ(r.state, TrackingState::kInitializing);
       EXPECT_TRUE(r.world_from_camera.isApprox(Pose::Identity()));
@@ -122,7 +138,6 @@ TEST(FrameTracker, RecoversSyntheticPath) {
       ASSERT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
       EXPECT_TRUE(r.note.empty());
       EXPECT_GT(r.num_inliers, 200);
-      const auto [t, rot] = FrameError(est_prev, r.world_from_camera, true_prev, truth);
       t_err.push_back(t);
       r_err.push_back(rot);
       if (r.keyframe_inserted) {
@@ -133,8 +148,6 @@ TEST(FrameTracker, RecoversSyntheticPath) {
       }
     }
     final_error = (r.world_from_camera.translation() - truth.translation()).norm();
-    est_prev = r.world_from_camera;
-    true_prev = truth;
   }
   double t_sq = 0, r_sq = 0;
   for (size_t k = 0; k < t_err.size(); ++k) {
@@ -200,15 +213,15 @@ TEST(FrameTracker, UnpredictedTurnFallsBackToEpnp) {
   // but within the 45 px of the wide search, so EPnP + RANSAC must find the pose.
   const Pose turn = PoseFromAxisAngle({0.0, 3.0 / kRadToDeg, 0.0}, {0, 0, 0});
   auto truth_at = [&](int i) { return i < 30 ? SmoothPath(i) : SmoothPath(i) * turn; };
-  Pose est_prev, true_prev;
+  StepError steps;
   int epnp_frames = 0;
   for (int i = 0; i < 50; ++i) {
     const Pose truth = truth_at(i);
     const TrackingResult r =
         tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
+    const auto [t, rot] = steps.Next(r.world_from_camera, truth);
     if (i > 0) {
       ASSERT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
-      const auto [t, rot] = FrameError(est_prev, r.world_from_camera, true_prev, truth);
       EXPECT_LT(t, 0.005) << i;
       EXPECT_LT(rot, 0.1) << i;
     }
@@ -218,8 +231,6 @@ TEST(FrameTracker, UnpredictedTurnFallsBackToEpnp) {
       EXPECT_FALSE(r.used_epnp) << i;
     }
     epnp_frames += r.used_epnp ? 1 : 0;
-    est_prev = r.world_from_camera;
-    true_prev = truth;
   }
   // The turn enters the motion model once, so at most the next frame needs EPnP as well.
   EXPECT_LE(epnp_frames, 2);
@@ -239,15 +250,11 @@ TurnFrame TrackUnpredictedTurn(double turn_deg, const TrackerOptions& options) {
   FrameTracker tracker(world.camera, options);
   const Pose turn = PoseFromAxisAngle({0.0, turn_deg / kRadToDeg, 0.0}, {0, 0, 0});
   TurnFrame out;
-  Pose est_prev, true_prev;
+  StepError steps;
   for (int i = 0; i <= 30; ++i) {
     const Pose truth = i < 30 ? SmoothPath(i) : SmoothPath(i) * turn;
     out.result = tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
-    if (i == 30)
-      std::tie(out.t_error, out.r_error) =
-          FrameError(est_prev, out.result.world_from_camera, true_prev, truth);
-    est_prev = out.result.world_from_camera;
-    true_prev = truth;
+    std::tie(out.t_error, out.r_error) = steps.Next(out.result.world_from_camera, truth);
   }
   return out;
 }
@@ -299,7 +306,7 @@ MaskedBoxRun TrackWithMaskedBox(double box_speed_m, const TrackerOptions& option
   render.max_features = 400;
   FrameTracker tracker(room.camera, options);
   MaskedBoxRun out;
-  Pose est_prev, true_prev;
+  StepError steps;
   for (int i = 0; i < 40; ++i) {
     const Pose truth = SmoothPath(i);
     const test::SyntheticWorld moved = ShiftedAlongX(box, box_speed_m * std::max(0, i - 9));
@@ -314,16 +321,13 @@ MaskedBoxRun TrackWithMaskedBox(double box_speed_m, const TrackerOptions& option
     }
     if (i > 0) {
       EXPECT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
-      out.max_t_error = std::max(
-          out.max_t_error, FrameError(est_prev, r.world_from_camera, true_prev, truth).first);
     }
+    out.max_t_error = std::max(out.max_t_error, steps.Next(r.world_from_camera, truth).first);
     if (i >= 10) {
       out.masked += static_cast<int>(box_features.size());
       out.readmitted += static_cast<int>(r.readmitted.size());
       for (int k : r.readmitted) EXPECT_LT(k, static_cast<int>(box_features.size()));
     }
-    est_prev = r.world_from_camera;
-    true_prev = truth;
   }
   // Masked features never create map points. A point made from a box feature would carry its
   // descriptor: within a few flipped bits of the box point's, ~128 bits from any other.
@@ -391,7 +395,7 @@ UnmaskedBoxRun TrackWallWithUnmaskedBox(double box_speed_m, const TrackerOptions
   render.max_features = 500;
   FrameTracker tracker(wall.camera, options);
   UnmaskedBoxRun out;
-  Pose est_prev, true_prev;
+  StepError steps;
   for (int i = 0; i < 60; ++i) {
     const Pose truth = SmoothPath(i);
     const test::SyntheticWorld moved = ShiftedAlongX(box, box_speed_m * i);
@@ -401,11 +405,9 @@ UnmaskedBoxRun TrackWallWithUnmaskedBox(double box_speed_m, const TrackerOptions
     if (i > 0) {
       EXPECT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
     }
-    if (i > 15)
-      out.t_errors.push_back(FrameError(est_prev, r.world_from_camera, true_prev, truth).first);
+    const double t_error = steps.Next(r.world_from_camera, truth).first;
+    if (i > 15) out.t_errors.push_back(t_error);
     out.rejected += r.new_points_rejected;
-    est_prev = r.world_from_camera;
-    true_prev = truth;
   }
   return out;
 }
@@ -451,7 +453,7 @@ TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
   // model expects it, so no map point projects near its feature.
   const Pose jump = PoseFromAxisAngle({0.0, 10.0 / kRadToDeg, 0.0}, {0.6, 0.0, 0.0});
   auto truth_at = [&](int i) { return i < 30 ? SmoothPath(i) : jump * SmoothPath(i); };
-  Pose est_prev, true_prev;
+  StepError steps;
   std::vector<double> t_err;
   for (int i = 0; i < 80; ++i) {
     const Pose truth = truth_at(i);
@@ -468,9 +470,8 @@ TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
       ASSERT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
     }
     // After the re-seed the motion is measured again: per-frame errors small.
-    if (i >= 34) t_err.push_back(FrameError(est_prev, r.world_from_camera, true_prev, truth).first);
-    est_prev = r.world_from_camera;
-    true_prev = truth;
+    const double t_error = steps.Next(r.world_from_camera, truth).first;
+    if (i >= 34) t_err.push_back(t_error);
   }
   ASSERT_FALSE(t_err.empty());
   EXPECT_LT(*std::max_element(t_err.begin(), t_err.end()), 0.005);
