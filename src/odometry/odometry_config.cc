@@ -83,6 +83,14 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   // dynamic mask
   r->Bind("dynamic_mask.enabled", &c->dynamic_mask_enabled,
           "false = baseline: no dynamic handling, everything else identical");
+  r->BindChoice(
+      "dynamic_mask.source", {"difference", "ground_truth"},
+      [c] { return c->dynamic_mask_source == MaskSource::kGroundTruth ? "ground_truth" : "difference"; },
+      [c](const std::string& s) {
+        c->dynamic_mask_source = s == "ground_truth" ? MaskSource::kGroundTruth : MaskSource::kDifference;
+      },
+      "difference = the paper's detector; ground_truth = the sequence's masks (masks.txt, as "
+      "generated sequences have): a perfect mask, to measure what mask errors cost");
   DynamicMaskOptions* m = &c->dynamic_mask;
   r->BindChoice(
       "dynamic_mask.threshold", {"otsu", "fixed"}, [m] { return ToString(m->threshold); },

@@ -23,6 +23,13 @@ struct CameraConfig {
   Camera custom;                // used when source == "custom"
 };
 
+// Where paper mode's dynamic mask comes from.
+enum class MaskSource {
+  kDifference,   // the paper's detector: motion-compensated frame differencing
+  kGroundTruth,  // the sequence's ground-truth masks (generated sequences have them): what a
+                 // perfect detector would give, to tell the mask's errors from the tracker's
+};
+
 struct RunOptions {
   bool preload = true;  // decode the next frames in a second thread while processing
   int max_frames = 0;   // process at most this many frames (0 = all)
@@ -35,6 +42,7 @@ struct OdometryConfig {
   KltOptions klt;
   HomographyOptions homography;
   bool dynamic_mask_enabled = true;  // false = the baseline: same pipeline, no dynamic handling
+  MaskSource dynamic_mask_source = MaskSource::kDifference;  // with dynamic_mask_enabled
   DynamicMaskOptions dynamic_mask;
   FeatureOptions features;
   TrackerOptions tracker;

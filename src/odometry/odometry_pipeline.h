@@ -38,16 +38,28 @@ class OdometryPipeline {
 
   // Processes frame t and returns its record (pose always set). `next_gray` is frame t+1,
   // used only with backward detection "triplet" (empty at the end of the sequence).
-  // Fills `debug` when given.
-  FrameRecord Process(const RgbdFrame& frame, const cv::Mat& next_gray, DebugPanels* debug = nullptr);
+  // `truth_mask` is frame t's ground-truth mask (CV_8UC1, non-zero = dynamic), used only with
+  // mask source "ground_truth" (NeedsTruthMask), where it must not be empty. Fills `debug`
+  // when given. Throws InputError when a needed truth mask is missing or of the wrong type or size.
+  FrameRecord Process(const RgbdFrame& frame, const cv::Mat& next_gray, const cv::Mat& truth_mask = cv::Mat(),
+                      DebugPanels* debug = nullptr);
 
   // True when Process wants frame t+1 (backward detection "triplet").
   bool NeedsNextFrame() const;
+  // True when Process wants frame t's ground-truth mask (mask source "ground_truth").
+  bool NeedsTruthMask() const;
 
   // The dynamic mask of the last processed frame (empty when none was computed).
   const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
+  // Process with mask source "ground_truth": `truth_mask` stands for the detector's mask.
+  FrameRecord ProcessWithTruthMask(const RgbdFrame& frame, const cv::Mat& truth_mask, DebugPanels* debug);
+  // Removes the features inside last_mask_ (none when it is empty), tracks the others and
+  // fills `record`'s feature counts, pose, states and stage times after extraction.
+  void TrackStaticFeatures(const RgbdFrame& frame, FrameFeatures features, FrameRecord* record,
+                           DebugPanels* debug);
+
   Camera camera_;
   OdometryConfig config_;
   ImageArea image_area_;

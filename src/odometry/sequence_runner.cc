@@ -101,6 +101,11 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   TumDatasetOptions dataset_options = config.dataset;
   dataset_options.camera = config.CameraOverride();
   const TumDataset dataset(request.dataset, dataset_options);
+  if (config.dynamic_mask_enabled && config.dynamic_mask_source == MaskSource::kGroundTruth &&
+      !dataset.has_masks())
+    throw InputError("dynamic_mask.source \"ground_truth\": " + dataset.folder() +
+                     " has no masks.txt; ground-truth masks come with generated sequences "
+                     "(dynvo-synth, dynvo-insert-people, tools/make_sequences.sh)");
   PrepareOutputDir(request);
 
   const fs::path out(request.out_dir);
@@ -141,7 +146,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   auto process = [&](LoadedFrame& current, const cv::Mat& next_gray) {
     DebugPanels panels;
     const bool debug = debug_frames.count(current.frame.index) != 0;
-    FrameRecord record = pipeline.Process(current.frame, next_gray, debug ? &panels : nullptr);
+    FrameRecord record = pipeline.Process(current.frame, next_gray, current.truth_mask,
+                                          debug ? &panels : nullptr);
     record.times.load_ms = current.load_ms;
     if (evaluate_masks) record.mask_quality = CompareMasks(pipeline.last_mask(), current.truth_mask);
     if (debug) WriteDebugPanels((out / "debug").string(), record.index, current.frame.bgr, panels);

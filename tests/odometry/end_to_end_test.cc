@@ -151,6 +151,50 @@ TEST_F(EndToEnd, TimingRecordsTheThresholdOfEachMaskAndPaperModeFloorsOtsu) {
   EXPECT_GT(above_floor, 0);
 }
 
+TEST_F(EndToEnd, GroundTruthMasksStandForTheDetector) {
+  // The sequence's own masks replace the detector's: every frame has one, mask quality is
+  // perfect by construction, and the people's features leave the pose.
+  const std::string out = Run("paper.json", "truth_masks", {"dynamic_mask.source=ground_truth"});
+  const nlohmann::json report = nlohmann::json::parse(ReadTextFile(out + "/run.json"));
+  EXPECT_EQ(report["status"], "completed");
+  EXPECT_EQ(report["counts"]["masks_computed"], 120);
+  EXPECT_GT(report["counts"]["features_removed"].get<int>(), 1000);
+  EXPECT_DOUBLE_EQ(report["mask_quality"]["iou"].get<double>(), 1.0);
+  // Measured when written (as in the header, plus --set dynamic_mask.source=ground_truth):
+  // 0.0045 m/s, as paper mode with its own mask (0.0045); the baseline 0.0178.
+  EXPECT_LT(PerSecondRpe(out), 0.010) << "per-second RPE with ground-truth masks (m/s)";
+  const std::vector<std::string> thresholds = MaskThresholds(out);
+  EXPECT_TRUE(std::all_of(thresholds.begin(), thresholds.end(), [](const std::string& v) { return v.empty(); }))
+      << "no difference image is binarised";
+}
+
+TEST(EndToEndErrors, GroundTruthMasksNeedASequenceWithMasks) {
+  test::TempDir dir;
+  SyntheticSequenceOptions options;
+  options.frames = 3;
+  const std::string sequence = (dir.path() / "sequence").string();
+  PrepareOutputFolder(sequence, /*force=*/false);
+  WriteSyntheticSequence(options, sequence);
+  std::filesystem::remove(sequence + "/masks.txt");
+  RunRequest request;
+  request.dataset = sequence;
+  request.config_path = ConfigPath("paper.json");
+  request.overrides = {"dynamic_mask.source=ground_truth"};
+  request.out_dir = (dir.path() / "out").string();
+  request.quiet = true;
+  try {
+    RunOdometry(request);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("dynamic_mask.source"), std::string::npos) << message;
+    EXPECT_NE(message.find("masks.txt"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(std::filesystem::exists(request.out_dir)) << "nothing written on a bad request";
+  request.overrides.clear();  // the detector needs no masks
+  EXPECT_NO_THROW(RunOdometry(request));
+}
+
 TEST_F(EndToEnd, SameInputGivesTheSameTrajectory) {
   const std::string first = Run("paper.json", "first");
   const std::string second = Run("paper.json", "second");

@@ -62,12 +62,17 @@ TEST(OdometryConfig, ErrorsNameFileAndKey) {
   EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
   EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"),
             std::string::npos);
+  const std::string source = LoadError("", {"dynamic_mask.source=oracle"});
+  EXPECT_NE(source.find("dynamic_mask.source"), std::string::npos) << source;
+  EXPECT_NE(source.find("ground_truth"), std::string::npos) << source;
 }
 
 TEST(OdometryConfig, OverridesWinOverTheFile) {
   const OdometryConfig c = LoadOdometryConfig(
       ConfigPath("paper.json"), {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
-                                 "camera.source=fr1"});
+                                 "camera.source=fr1", "dynamic_mask.source=ground_truth"});
+  EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).dynamic_mask_source, MaskSource::kDifference);
+  EXPECT_EQ(c.dynamic_mask_source, MaskSource::kGroundTruth);
   EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 9);
   EXPECT_EQ(c.dynamic_mask.backward, BackwardMode::kTriplet);
   ASSERT_TRUE(c.CameraOverride().has_value());

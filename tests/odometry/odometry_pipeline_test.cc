@@ -1,0 +1,78 @@
+// The pipeline's mask source "ground_truth": the given mask is the one features are removed by,
+// and a missing or malformed one is an error that names the frame.
+
+#include "odometry/odometry_pipeline.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "core/error.h"
+
+namespace dynvo {
+namespace {
+
+// A textured 640x480 frame at 2 m everywhere.
+RgbdFrame TexturedFrame() {
+  RgbdFrame frame;
+  frame.index = 7;
+  frame.stamp = 1.5;
+  frame.gray = cv::Mat(480, 640, CV_8UC1);
+  cv::RNG rng(3);
+  rng.fill(frame.gray, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat merged[] = {frame.gray, frame.gray, frame.gray};
+  cv::merge(merged, 3, frame.bgr);
+  frame.depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  return frame;
+}
+
+OdometryConfig TruthMaskConfig() {
+  OdometryConfig config;
+  config.dynamic_mask_source = MaskSource::kGroundTruth;
+  return config;
+}
+
+std::string ProcessError(OdometryPipeline& pipeline, const RgbdFrame& frame, const cv::Mat& mask) {
+  try {
+    pipeline.Process(frame, cv::Mat(), mask);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OdometryPipeline, GroundTruthMaskRemovesTheFeaturesOnIt) {
+  OdometryPipeline pipeline(Camera{}, TruthMaskConfig());
+  EXPECT_TRUE(pipeline.NeedsTruthMask());
+  EXPECT_FALSE(pipeline.NeedsNextFrame());
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask.colRange(0, 320).setTo(255);  // left half "dynamic"
+  const FrameRecord record = pipeline.Process(TexturedFrame(), cv::Mat(), mask);
+  EXPECT_TRUE(record.mask_ok);
+  EXPECT_DOUBLE_EQ(record.dynamic_ratio, 0.5);
+  ASSERT_GT(record.features_total, 100);
+  // Features spread evenly over the image: about half on each side.
+  EXPECT_NEAR(static_cast<double>(record.features_removed) / record.features_total, 0.5, 0.1);
+  EXPECT_EQ(record.features_kept + record.features_removed, record.features_total);
+  EXPECT_EQ(cv::countNonZero(pipeline.last_mask() != mask), 0);
+}
+
+TEST(OdometryPipeline, MissingOrMalformedGroundTruthMaskNamesTheFrame) {
+  OdometryPipeline pipeline(Camera{}, TruthMaskConfig());
+  const RgbdFrame frame = TexturedFrame();
+  const std::string missing = ProcessError(pipeline, frame, cv::Mat());
+  EXPECT_NE(missing.find("frame 7"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("ground-truth mask"), std::string::npos) << missing;
+  const std::string small = ProcessError(pipeline, frame, cv::Mat(240, 320, CV_8UC1, cv::Scalar(0)));
+  EXPECT_NE(small.find("size of the image"), std::string::npos) << small;
+  const std::string wide = ProcessError(pipeline, frame, cv::Mat(480, 640, CV_16UC1, cv::Scalar(0)));
+  EXPECT_NE(wide.find("8-bit"), std::string::npos) << wide;
+  // The detector needs no ground-truth mask.
+  OdometryPipeline detector(Camera{}, OdometryConfig{});
+  EXPECT_FALSE(detector.NeedsTruthMask());
+  EXPECT_EQ(ProcessError(detector, frame, cv::Mat()), "");
+}
+
+}  // namespace
+}  // namespace dynvo
