@@ -26,10 +26,10 @@ mkdir -p "$work" "$results"
 # rpe_of <sequence dir> <mode> <out dir>: per-second translational RPE RMSE of one run; mode
 # paper, baseline, or truth (paper.json with the ground-truth masks)
 rpe_of() {
-  local config="$2" source=()
-  if [[ "$2" == truth ]]; then config=paper; source=(--set dynamic_mask.source=ground_truth); fi
+  local config="$2" truth_masks=()
+  if [[ "$2" == truth ]]; then config=paper; truth_masks=(--set dynamic_mask.source=ground_truth); fi
   "$bin/dynvo-cli" run --quiet --force --dataset "$1" --config "$root/configs/$config.json" --out "$3" \
-    "${source[@]}" ${overrides[@]+"${overrides[@]}"}
+    "${truth_masks[@]}" ${overrides[@]+"${overrides[@]}"}
   "$bin/rpe" "$1/groundtruth.txt" "$3/trajectory.txt" --json > "$3/rpe.json"
   python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["translational_error_m"]["rmse"])' \
     "$3/rpe.json"

@@ -13,7 +13,8 @@ namespace dynvo {
 
 struct StageTimes {
   double load_ms = 0;          // decoding the PNGs (in the loader thread when preloading)
-  double dynamic_mask_ms = 0;  // KLT, homography, differencing, morphology, all rounds
+  double dynamic_mask_ms = 0;  // KLT, homography, differencing, morphology, all rounds (mask
+                               // source ground_truth: binarising the given mask)
   double features_ms = 0;      // ORB extraction, spreading, back-projection (in paper mode on a
                                // second thread, overlapping dynamic_mask_ms)
   double filter_ms = 0;        // removing features inside the mask
