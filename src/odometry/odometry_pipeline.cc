@@ -39,6 +39,15 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split,
   return canvas;
 }
 
+// Throws InputError naming the frame unless `mask` is a CV_8UC1 image of the frame's size.
+void CheckTruthMask(const RgbdFrame& frame, const cv::Mat& mask) {
+  const std::string where = "frame " + std::to_string(frame.index) + " (stamp " + std::to_string(frame.stamp) + "): ";
+  if (mask.empty())
+    throw InputError(where + "dynamic_mask.source \"ground_truth\" needs the frame's ground-truth mask; there is none");
+  if (mask.type() != CV_8UC1 || mask.size() != frame.gray.size())
+    throw InputError(where + "the ground-truth mask must be 8-bit 1-channel and the size of the image");
+}
+
 }  // namespace
 
 OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area)
@@ -59,7 +68,7 @@ bool OdometryPipeline::NeedsTruthMask() const {
 
 FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& next_gray,
                                       const cv::Mat& truth_mask, DebugPanels* debug) {
-  if (NeedsTruthMask()) return ProcessWithTruthMask(frame, truth_mask, debug);
+  if (NeedsTruthMask()) CheckTruthMask(frame, truth_mask);
   const auto start = Clock::now();
   FrameRecord record;
   record.index = frame.index;
@@ -78,9 +87,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     });
   }
 
-  // 1. Dynamic mask (skipped in the baseline and on the first frame).
+  // 1. Dynamic mask (skipped in the baseline and on the first frame), or the given one.
   last_mask_.release();
-  if (config_.dynamic_mask_enabled) {
+  if (NeedsTruthMask()) {
+    const auto t = Clock::now();
+    last_mask_ = truth_mask != 0;
+    record.mask_ok = true;
+    record.dynamic_ratio = static_cast<double>(cv::countNonZero(last_mask_)) / static_cast<double>(last_mask_.total());
+    record.times.dynamic_mask_ms = MsSince(t);
+    if (debug) debug->fused_mask = last_mask_;
+  } else if (config_.dynamic_mask_enabled) {
     if (previous_gray_.empty()) {
       record.mask_note = "first frame: no previous frame to difference";
       const auto t = Clock::now();
@@ -126,8 +142,8 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     }
   }
 
-  // 3-4. Features minus the dynamic ones; pose, local map, local BA.
-  const auto t = Clock::now();
+  // 3. Features minus the dynamic ones.
+  auto t = Clock::now();
   FrameFeatures features;
   if (features_future.valid()) {
     features = features_future.get();
@@ -136,73 +152,38 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     features_ms = MsSince(t);
   }
   record.times.features_ms = features_ms;
-  TrackStaticFeatures(frame, std::move(features), &record, debug);
+  record.features_total = static_cast<int>(features.size());
 
-  previous_gray_ = frame.gray;
-  record.times.processing_ms = MsSince(start);
-  return record;
-}
-
-FrameRecord OdometryPipeline::ProcessWithTruthMask(const RgbdFrame& frame, const cv::Mat& truth_mask,
-                                                   DebugPanels* debug) {
-  const std::string where = "frame " + std::to_string(frame.index) + " (stamp " +
-                            std::to_string(frame.stamp) + "): ";
-  if (truth_mask.empty())
-    throw InputError(where + "dynamic_mask.source \"ground_truth\" needs the frame's ground-truth mask; there is none");
-  if (truth_mask.type() != CV_8UC1 || truth_mask.size() != frame.gray.size())
-    throw InputError(where + "the ground-truth mask must be 8-bit 1-channel and the size of the image");
-  const auto start = Clock::now();
-  FrameRecord record;
-  record.index = frame.index;
-  record.stamp = frame.stamp;
-
-  // 1. The given mask stands for the detector's.
-  auto t = Clock::now();
-  last_mask_ = truth_mask != 0;
-  record.mask_ok = true;
-  record.dynamic_ratio = static_cast<double>(cv::countNonZero(last_mask_)) / static_cast<double>(last_mask_.total());
-  record.times.dynamic_mask_ms = MsSince(t);
-  if (debug) debug->fused_mask = last_mask_;
-
-  // 2-4. Features, minus the masked ones; tracking.
   t = Clock::now();
-  FrameFeatures features = extractor_.Extract(frame.gray, frame.depth, camera_);
-  record.times.features_ms = MsSince(t);
-  TrackStaticFeatures(frame, std::move(features), &record, debug);
-  previous_gray_ = frame.gray;
-  record.times.processing_ms = MsSince(start);
-  return record;
-}
-
-void OdometryPipeline::TrackStaticFeatures(const RgbdFrame& frame, FrameFeatures features,
-                                           FrameRecord* record, DebugPanels* debug) {
-  record->features_total = static_cast<int>(features.size());
-  auto t = Clock::now();
   FeatureSplit split;
   if (!last_mask_.empty()) {
     split = SplitByMask(features, last_mask_);
   } else {
     split.kept = std::move(features);
   }
-  record->times.filter_ms = MsSince(t);
-  record->features_kept = static_cast<int>(split.kept.size());
-  record->features_removed = static_cast<int>(split.removed.size());
+  record.times.filter_ms = MsSince(t);
+  record.features_kept = static_cast<int>(split.kept.size());
+  record.features_removed = static_cast<int>(split.removed.size());
 
-  // Pose from the static features, local map, local BA.
+  // 4. Pose from the static features, local map, local BA.
   const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);
   if (debug) debug->features = DrawFeatures(frame.bgr, split, tracking.readmitted);
-  record->world_from_camera = tracking.world_from_camera;
-  record->state = tracking.state;
-  record->tracking_note = tracking.note;
-  record->num_matches = tracking.num_matches;
-  record->num_inliers = tracking.num_inliers;
-  record->features_readmitted = static_cast<int>(tracking.readmitted.size());
-  record->new_points_rejected = tracking.new_points_rejected;
-  record->keyframe = tracking.keyframe_inserted;
-  record->times.match_ms = tracking.match_ms;
-  record->times.pose_ms = tracking.pose_ms;
-  record->times.map_ms = tracking.map_ms;
-  record->times.local_ba_ms = tracking.local_ba_ms;
+  record.world_from_camera = tracking.world_from_camera;
+  record.state = tracking.state;
+  record.tracking_note = tracking.note;
+  record.num_matches = tracking.num_matches;
+  record.num_inliers = tracking.num_inliers;
+  record.features_readmitted = static_cast<int>(tracking.readmitted.size());
+  record.new_points_rejected = tracking.new_points_rejected;
+  record.keyframe = tracking.keyframe_inserted;
+  record.times.match_ms = tracking.match_ms;
+  record.times.pose_ms = tracking.pose_ms;
+  record.times.map_ms = tracking.map_ms;
+  record.times.local_ba_ms = tracking.local_ba_ms;
+
+  previous_gray_ = frame.gray;
+  record.times.processing_ms = MsSince(start);
+  return record;
 }
 
 }  // namespace dynvo

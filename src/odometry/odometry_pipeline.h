@@ -53,13 +53,6 @@ class OdometryPipeline {
   const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
-  // Process with mask source "ground_truth": `truth_mask` stands for the detector's mask.
-  FrameRecord ProcessWithTruthMask(const RgbdFrame& frame, const cv::Mat& truth_mask, DebugPanels* debug);
-  // Removes the features inside last_mask_ (none when it is empty), tracks the others and
-  // fills `record`'s feature counts, pose, states and stage times after extraction.
-  void TrackStaticFeatures(const RgbdFrame& frame, FrameFeatures features, FrameRecord* record,
-                           DebugPanels* debug);
-
   Camera camera_;
   OdometryConfig config_;
   ImageArea image_area_;

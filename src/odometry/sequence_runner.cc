@@ -101,8 +101,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   TumDatasetOptions dataset_options = config.dataset;
   dataset_options.camera = config.CameraOverride();
   const TumDataset dataset(request.dataset, dataset_options);
-  if (config.dynamic_mask_enabled && config.dynamic_mask_source == MaskSource::kGroundTruth &&
-      !dataset.has_masks())
+  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area());
+  if (pipeline.NeedsTruthMask() && !dataset.has_masks())
     throw InputError("dynamic_mask.source \"ground_truth\": " + dataset.folder() +
                      " has no masks.txt; ground-truth masks come with generated sequences "
                      "(dynvo-synth, dynvo-insert-people, tools/make_sequences.sh)");
@@ -134,7 +134,6 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                        {"timing", (out / "timing.csv").string()}};
 
   const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
-  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area());
   FrameLoader loader(dataset, count, evaluate_masks, config.run.preload);
   TimingCsvWriter timing((out / "timing.csv").string());
   std::ofstream trajectory((out / "trajectory.txt").string(), std::ios::trunc);
