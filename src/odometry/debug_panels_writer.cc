@@ -1,6 +1,7 @@
 #include "odometry/debug_panels_writer.h"
 
 #include <cstdio>
+#include <fstream>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -28,6 +29,28 @@ void Save(const std::string& path, const cv::Mat& image) {
   if (!cv::imwrite(path, image)) ThrowFileError(path, 0, "cannot write image");
 }
 
+const char* StatusName(DebugFeature::Status status) {
+  switch (status) {
+    case DebugFeature::Status::kKept: return "kept";
+    case DebugFeature::Status::kRemoved: return "removed";
+    case DebugFeature::Status::kReadmitted: return "readmitted";
+  }
+  return "?";
+}
+
+void WriteFeatureList(const std::string& path, const std::vector<DebugFeature>& features) {
+  std::ofstream out(path);
+  out << "x,y,octave,depth_m,status,inlier\n";
+  char line[128];
+  for (const DebugFeature& f : features) {
+    std::snprintf(line, sizeof(line), "%.2f,%.2f,%d,%.4f,%s,%d\n", f.pixel.x, f.pixel.y, f.octave,
+                  f.depth_m, StatusName(f.status), f.inlier ? 1 : 0);
+    out << line;
+  }
+  out.flush();
+  if (!out) ThrowFileError(path, 0, "cannot write the feature list");
+}
+
 }  // namespace
 
 void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat& current_bgr,
@@ -46,6 +69,7 @@ void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat&
     cv::putText(tile, name, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(255, 255, 255), 2);
     tiles.push_back(tile);
   }
+  WriteFeatureList(dir + prefix + "features.csv", panels.feature_list);
   cv::Mat top, bottom, grid;
   cv::hconcat(std::vector<cv::Mat>(tiles.begin(), tiles.begin() + 3), top);
   cv::hconcat(std::vector<cv::Mat>(tiles.begin() + 3, tiles.end()), bottom);

@@ -39,6 +39,33 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split,
   return canvas;
 }
 
+// Every feature of `split` with its status and whether the pose used it (`tracking`'s
+// feature_inliers index the kept features, then the readmitted ones).
+std::vector<DebugFeature> ListFeatures(const FeatureSplit& split, const TrackingResult& tracking) {
+  const auto inlier = [&](size_t i) {
+    return i < tracking.feature_inliers.size() && tracking.feature_inliers[i] != 0;
+  };
+  std::vector<DebugFeature> list;
+  list.reserve(split.kept.size() + split.removed.size());
+  const auto add = [&](const FrameFeatures& f, size_t i, DebugFeature::Status status, bool used) {
+    list.push_back({f.keypoints[i].pt, f.keypoints[i].octave, f.depths[i], status, used});
+  };
+  for (size_t i = 0; i < split.kept.size(); ++i)
+    add(split.kept, i, DebugFeature::Status::kKept, inlier(i));
+  std::vector<int> readmitted_as(split.removed.size(), -1);  // position in `readmitted`
+  for (size_t k = 0; k < tracking.readmitted.size(); ++k)
+    readmitted_as[static_cast<size_t>(tracking.readmitted[k])] = static_cast<int>(k);
+  for (size_t i = 0; i < split.removed.size(); ++i) {
+    const int k = readmitted_as[i];
+    if (k < 0)
+      add(split.removed, i, DebugFeature::Status::kRemoved, false);
+    else
+      add(split.removed, i, DebugFeature::Status::kReadmitted,
+          inlier(split.kept.size() + static_cast<size_t>(k)));
+  }
+  return list;
+}
+
 // Throws InputError naming the frame unless `mask` is a CV_8UC1 image of the frame's size.
 void CheckTruthMask(const RgbdFrame& frame, const cv::Mat& mask) {
   const std::string where = "frame " + std::to_string(frame.index) + " (stamp " + std::to_string(frame.stamp) + "): ";
@@ -167,7 +194,10 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
 
   // 4. Pose from the static features, local map, local BA.
   const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);
-  if (debug) debug->features = DrawFeatures(frame.bgr, split, tracking.readmitted);
+  if (debug) {
+    debug->features = DrawFeatures(frame.bgr, split, tracking.readmitted);
+    debug->feature_list = ListFeatures(split, tracking);
+  }
   record.world_from_camera = tracking.world_from_camera;
   record.state = tracking.state;
   record.tracking_note = tracking.note;

@@ -5,6 +5,7 @@
 // it is the baseline, identical otherwise.
 
 #include <memory>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -19,7 +20,18 @@
 
 namespace dynvo {
 
-// The paper's Fig. 1 / Fig. 3 panels of one frame.
+// One feature of a debug frame: where it was detected, what the mask did with it, and
+// whether the pose used it.
+struct DebugFeature {
+  enum class Status { kKept, kRemoved, kReadmitted };
+  cv::Point2f pixel;               // keypoint as detected (image coordinates)
+  int octave = 0;                  // ORB pyramid level
+  double depth_m = 0.0;            // 0 = no usable depth
+  Status status = Status::kKept;   // kept by the mask, removed, or removed and readmitted
+  bool inlier = false;             // an inlier of the frame's final pose
+};
+
+// The paper's Fig. 1 / Fig. 3 panels of one frame, and its features.
 struct DebugPanels {
   cv::Mat compensated;    // frame t-1 warped onto t
   cv::Mat difference;     // |t - warp(t-1)|
@@ -27,6 +39,8 @@ struct DebugPanels {
   cv::Mat backward_mask;  // (empty when backward detection is off)
   cv::Mat fused_mask;     // union used to remove features
   cv::Mat features;       // frame t, kept features green, removed red
+  std::vector<DebugFeature> feature_list;  // every feature of frame t: the kept ones, then
+                                           // the removed ones
 };
 
 class OdometryPipeline {

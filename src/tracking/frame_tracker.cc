@@ -145,9 +145,12 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
     result.world_from_camera = estimate.camera_from_world.inverse();
     consecutive_lost_ = 0;
     ++frames_since_keyframe_;
-    for (size_t i = 0; i < matches.size(); ++i)
-      if (estimate.inliers[i])
-        map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
+    result.feature_inliers.assign(used.size(), 0);
+    for (size_t i = 0; i < matches.size(); ++i) {
+      if (!estimate.inliers[i]) continue;
+      map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
+      result.feature_inliers[static_cast<size_t>(matches[i].feature_index)] = 1;
+    }
     const Pose keyframe_camera_from_world = map_.keyframes().back().camera_from_world;
     const KeyframeDecision decision =
         DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers,

@@ -66,6 +66,9 @@ struct TrackingResult {
   int num_inliers = 0;            // pose inliers among them
   std::vector<int> readmitted;    // masked features (indices into Track's `masked`) verified
                                   // static that are inliers of the final pose
+  std::vector<uint8_t> feature_inliers;  // 1 per feature that is an inlier of the final pose:
+                                  // Track's `features`, then the `readmitted` ones in that
+                                  // order (empty when the frame was not tracked)
   bool used_epnp = false;         // the pose came from the EPnP + RANSAC retry
   bool keyframe_inserted = false;
   int map_keyframes = 0;          // local map size after this frame

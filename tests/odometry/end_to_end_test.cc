@@ -232,6 +232,22 @@ TEST_F(EndToEnd, DebugFramesWriteThePanels) {
                             "features", "panels"})
     EXPECT_TRUE(std::filesystem::exists(request.out_dir + "/debug/frame_000040_" + panel + ".png"))
         << panel;
+  // The feature list: a header, then one line per feature; some of them pose inliers.
+  std::ifstream list(request.out_dir + "/debug/frame_000040_features.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(list, line));
+  EXPECT_EQ(line, "x,y,octave,depth_m,status,inlier");
+  int rows = 0, inliers = 0;
+  while (std::getline(list, line)) {
+    ++rows;
+    const bool known = line.find(",kept,") != std::string::npos ||
+                       line.find(",removed,") != std::string::npos ||
+                       line.find(",readmitted,") != std::string::npos;
+    EXPECT_TRUE(known) << line;
+    inliers += line.back() == '1';
+  }
+  EXPECT_GT(rows, 500);
+  EXPECT_GT(inliers, 100);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // The pipeline's mask source "ground_truth": the given mask is the one features are removed by,
-// and a missing or malformed one is an error that names the frame.
+// and a missing or malformed one is an error that names the frame. The debug feature list
+// accounts for every feature of the frame.
 
 #include "odometry/odometry_pipeline.h"
 
@@ -56,6 +57,35 @@ TEST(OdometryPipeline, GroundTruthMaskRemovesTheFeaturesOnIt) {
   EXPECT_NEAR(static_cast<double>(record.features_removed) / record.features_total, 0.5, 0.1);
   EXPECT_EQ(record.features_kept + record.features_removed, record.features_total);
   EXPECT_EQ(cv::countNonZero(pipeline.last_mask() != mask), 0);
+}
+
+TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
+  OdometryPipeline pipeline(Camera{}, TruthMaskConfig());
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask.colRange(0, 320).setTo(255);
+  RgbdFrame frame = TexturedFrame();
+  pipeline.Process(frame, cv::Mat(), mask);  // seeds the map from the right half
+  // The same view again: the kept features match the map they were seeded into.
+  frame.index += 1;
+  frame.stamp += 0.033;
+  DebugPanels debug;
+  const FrameRecord record = pipeline.Process(frame, cv::Mat(), mask, &debug);
+  ASSERT_EQ(static_cast<int>(debug.feature_list.size()), record.features_total);
+  int kept = 0, removed = 0, inliers = 0, removed_inliers = 0;
+  for (const DebugFeature& f : debug.feature_list) {
+    const bool on_mask = mask.at<uint8_t>(cvRound(f.pixel.y), cvRound(f.pixel.x)) != 0;
+    EXPECT_EQ(f.status != DebugFeature::Status::kKept, on_mask) << f.pixel;
+    kept += f.status == DebugFeature::Status::kKept;
+    removed += f.status != DebugFeature::Status::kKept;
+    inliers += f.inlier;
+    removed_inliers += f.inlier && f.status == DebugFeature::Status::kRemoved;
+    EXPECT_NEAR(f.depth_m, 2.0, 1e-6);
+  }
+  EXPECT_EQ(kept, record.features_kept);
+  EXPECT_EQ(removed, record.features_removed);
+  EXPECT_EQ(inliers, record.num_inliers);
+  EXPECT_EQ(removed_inliers, 0);  // only readmitted features can join the pose
+  EXPECT_GT(record.num_inliers, record.features_kept / 2);
 }
 
 TEST(OdometryPipeline, MissingOrMalformedGroundTruthMaskNamesTheFrame) {

@@ -327,6 +327,11 @@ MaskedBoxRun TrackWithMaskedBox(double box_speed_m, const TrackerOptions& option
       out.masked += static_cast<int>(box_features.size());
       out.readmitted += static_cast<int>(r.readmitted.size());
       for (int k : r.readmitted) EXPECT_LT(k, static_cast<int>(box_features.size()));
+      // An inlier flag per feature handed in, then per readmitted one (those are all inliers).
+      EXPECT_EQ(r.feature_inliers.size(), room_features.size() + r.readmitted.size());
+      EXPECT_EQ(std::count(r.feature_inliers.begin(), r.feature_inliers.end(), 1), r.num_inliers);
+      EXPECT_TRUE(std::all_of(r.feature_inliers.begin() + static_cast<std::ptrdiff_t>(room_features.size()),
+                              r.feature_inliers.end(), [](uint8_t f) { return f == 1; }));
     }
   }
   // Masked features never create map points. A point made from a box feature would carry its
