@@ -22,6 +22,9 @@ import sys
 import numpy as np
 from PIL import Image
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+from figures import FigureError, lookup, read_list  # noqa: E402  (TUM list files, as figures.py reads them)
+
 BANDS = [(0, 0.5, "on a person"), (0.5, 5, "0-5 px"), (5, 15, "5-15 px"), (15, 30, "15-30 px"),
          (30, 60, "30-60 px"), (60, 120, "60-120 px"), (120, float("inf"), "over 120 px")]
 
@@ -30,25 +33,12 @@ def fail(message):
     sys.exit("feature_use_table.py: " + message)
 
 
-def stamp_list(path):
-    """(stamp, file) of each non-comment line of a TUM list file."""
-    rows = []
-    for number, line in enumerate(open(path), 1):
-        if line.startswith("#") or not line.strip():
-            continue
-        parts = line.split()
-        if len(parts) != 2:
-            fail(f"{path}:{number}: expected 'timestamp filename'")
-        rows.append((float(parts[0]), parts[1]))
-    return rows
-
-
 def mask_at(sequence, masks, stamp):
-    """The ground-truth mask (bool) of the image nearest `stamp` (within 1 ms)."""
-    nearest = min(masks, key=lambda row: abs(row[0] - stamp))
-    if abs(nearest[0] - stamp) > 1e-3:
-        fail(f"{sequence}/masks.txt: no mask within 1 ms of stamp {stamp:.6f}")
-    return np.array(Image.open(os.path.join(sequence, nearest[1]))) > 0
+    """The ground-truth mask (bool) listed in masks.txt for `stamp`."""
+    name = lookup(masks, stamp)
+    if name is None:
+        fail(f"{sequence}/masks.txt: no mask for stamp {stamp:.6f}")
+    return np.array(Image.open(os.path.join(sequence, name))) > 0
 
 
 def distances_to(mask, xs, ys):
@@ -80,7 +70,7 @@ def bands_of(run_dir, sequence):
     masks_txt = os.path.join(sequence, "masks.txt")
     if not os.path.exists(masks_txt):
         fail(f"{masks_txt}: missing (the mask sequence must be a generated one)")
-    masks = stamp_list(masks_txt)
+    masks = read_list(masks_txt)
     files = sorted(glob.glob(os.path.join(run_dir, "debug", "frame_*_features.csv")))
     if not files:
         fail(f"{run_dir}/debug: no frame_*_features.csv (run with --debug-frames)")
@@ -131,4 +121,7 @@ def main():
         print(f"| {name} | " + " | ".join(text) + " |")
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except FigureError as e:
+        fail(str(e))

@@ -84,13 +84,19 @@ def run_tool(args):
 
 
 def read_list(path):
-    """TUM list file (rgb.txt, masks.txt): [(stamp, relative file)]."""
+    """TUM list file (rgb.txt, masks.txt): [(stamp, relative file)]; FigureError naming the
+    file and line for a line that is not 'timestamp filename'."""
     entries = []
     with open(path) as f:
-        for line in f:
+        for number, line in enumerate(f, 1):
             parts = line.split()
-            if parts and not parts[0].startswith("#"):
+            if not parts or parts[0].startswith("#"):
+                continue
+            try:
                 entries.append((float(parts[0]), parts[1]))
+            except (ValueError, IndexError):
+                raise FigureError("%s:%d: expected 'timestamp filename', got %r"
+                                  % (path, number, line.strip()))
     return entries
 
 

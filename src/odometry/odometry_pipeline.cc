@@ -25,17 +25,15 @@ bool SameImage(const cv::Mat& a, const cv::Mat& b) {
   return !a.empty() && a.data == b.data && a.size() == b.size() && a.step == b.step && a.type() == b.type();
 }
 
-// Kept features green, removed ones red, removed ones readmitted by the tracker yellow.
-cv::Mat DrawFeatures(const cv::Mat& bgr, const FeatureSplit& split,
-                     const std::vector<int>& readmitted) {
+// Frame t with its features: kept green, removed red, readmitted yellow.
+cv::Mat DrawFeatures(const cv::Mat& bgr, const std::vector<DebugFeature>& features) {
   cv::Mat canvas = bgr.clone();
-  for (const cv::KeyPoint& k : split.kept.keypoints)
-    cv::circle(canvas, k.pt, 3, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
-  std::vector<uint8_t> back(split.removed.size(), 0);
-  for (int i : readmitted) back[static_cast<size_t>(i)] = 1;
-  for (size_t i = 0; i < split.removed.size(); ++i)
-    cv::circle(canvas, split.removed.keypoints[i].pt, 3,
-               back[i] ? cv::Scalar(0, 220, 255) : cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  for (const DebugFeature& f : features) {
+    const cv::Scalar color = f.status == DebugFeature::Status::kKept      ? cv::Scalar(0, 200, 0)
+                             : f.status == DebugFeature::Status::kRemoved ? cv::Scalar(0, 0, 255)
+                                                                          : cv::Scalar(0, 220, 255);
+    cv::circle(canvas, f.pixel, 3, color, 1, cv::LINE_AA);
+  }
   return canvas;
 }
 
@@ -195,8 +193,8 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // 4. Pose from the static features, local map, local BA.
   const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);
   if (debug) {
-    debug->features = DrawFeatures(frame.bgr, split, tracking.readmitted);
     debug->feature_list = ListFeatures(split, tracking);
+    debug->features = DrawFeatures(frame.bgr, debug->feature_list);
   }
   record.world_from_camera = tracking.world_from_camera;
   record.state = tracking.state;
