@@ -267,8 +267,13 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
   result.num_static_tracks = 0;
   for (const cv::Point2f& p : forward_tracks.current)
     if (!InMaskRegion(result.mask, p)) ++result.num_static_tracks;
-  result.dynamic_ratio = static_cast<double>(cv::countNonZero(result.mask)) / static_cast<double>(size.area());
+  result.dynamic_ratio = DynamicRatio(result.mask);
   return result;
+}
+
+double DynamicRatio(const cv::Mat& mask) {
+  if (mask.empty()) return 0.0;
+  return static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
 }
 
 }  // namespace dynvo

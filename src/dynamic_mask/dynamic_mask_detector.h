@@ -58,4 +58,7 @@ struct DynamicMaskResult {
 DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt, const HomographyOptions& homography,
                                     const DynamicMaskOptions& options);
 
+// Share of the non-zero pixels of `mask` (CV_8UC1), in [0, 1]; 0 for an empty mask.
+double DynamicRatio(const cv::Mat& mask);
+
 }  // namespace dynvo

@@ -118,7 +118,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     const auto t = Clock::now();
     last_mask_ = truth_mask != 0;
     record.mask_ok = true;
-    record.dynamic_ratio = static_cast<double>(cv::countNonZero(last_mask_)) / static_cast<double>(last_mask_.total());
+    record.dynamic_ratio = DynamicRatio(last_mask_);
     record.times.dynamic_mask_ms = MsSince(t);
     if (debug) debug->fused_mask = last_mask_;
   } else if (config_.dynamic_mask_enabled) {

@@ -364,5 +364,15 @@ TEST(DetectDynamicMask, BadInputThrows) {
   EXPECT_THROW(DetectDynamicMask(InputOf(scene, false), KltOptions(), HomographyOptions(), bad), InputError);
 }
 
+TEST(DynamicRatio, IsTheShareOfMaskPixels) {
+  cv::Mat mask(40, 60, CV_8UC1, cv::Scalar(0));
+  EXPECT_EQ(DynamicRatio(mask), 0.0);
+  mask(cv::Rect(0, 0, 30, 20)).setTo(255);  // a quarter of the image
+  EXPECT_DOUBLE_EQ(DynamicRatio(mask), 0.25);
+  mask(cv::Rect(30, 20, 30, 20)).setTo(1);  // any non-zero value counts
+  EXPECT_DOUBLE_EQ(DynamicRatio(mask), 0.5);
+  EXPECT_EQ(DynamicRatio(cv::Mat()), 0.0);
+}
+
 }  // namespace
 }  // namespace dynvo
