@@ -30,6 +30,8 @@ void FeatureOptions::Check() const {
   Require(std::isfinite(min_depth_m) && min_depth_m >= 0.0, "min_depth_m", ">= 0", min_depth_m);
   Require(std::isfinite(max_depth_m) && max_depth_m > min_depth_m, "max_depth_m",
           "> features.min_depth_m", max_depth_m);
+  Require(refill_margin_px >= 0 && refill_margin_px <= 64, "refill_margin_px", "in [0, 64]",
+          refill_margin_px);
 }
 
 FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key) {

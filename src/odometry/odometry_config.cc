@@ -133,6 +133,11 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
       "how features are spread over the image");
   r->Bind("features.parallel_levels", &f->parallel_levels,
           "detect pyramid levels on OpenCV's thread pool (same result)");
+  r->Bind("features.refill_outside_mask", &f->refill_outside_mask,
+          "when the dynamic mask removes features, detect them again outside the mask grown by "
+          "refill_margin_px, so the whole budget lands on the static part (costs a second extraction)");
+  r->Bind("features.refill_margin_px", &f->refill_margin_px,
+          "pixels the mask is grown by for the refill (0-64)");
   r->Bind("features.min_depth_m", &f->min_depth_m, "nearer depth gives no 3D point");
   r->Bind("features.max_depth_m", &f->max_depth_m, "farther depth gives no 3D point");
   // matching, pose, map, keyframes, local BA, tracking

@@ -176,9 +176,6 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     features = extractor_.Extract(frame.gray, frame.depth, camera_);
     features_ms = MsSince(t);
   }
-  record.times.features_ms = features_ms;
-  record.features_total = static_cast<int>(features.size());
-
   t = Clock::now();
   FeatureSplit split;
   if (!last_mask_.empty()) {
@@ -187,6 +184,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     split.kept = std::move(features);
   }
   record.times.filter_ms = MsSince(t);
+  // Refill: the budget the masked features took is detected again off the mask and its margin.
+  if (config_.features.refill_outside_mask && split.removed.size() > 0) {
+    t = Clock::now();
+    split.kept = extractor_.Extract(frame.gray, frame.depth, camera_,
+                                    GrowMask(last_mask_, config_.features.refill_margin_px));
+    split.kept_indices.clear();  // the kept features no longer index the first extraction
+    features_ms += MsSince(t);
+  }
+  record.times.features_ms = features_ms;
+  record.features_total = static_cast<int>(split.kept.size() + split.removed.size());
   record.features_kept = static_cast<int>(split.kept.size());
   record.features_removed = static_cast<int>(split.removed.size());
 

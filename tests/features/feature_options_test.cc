@@ -37,6 +37,11 @@ TEST(FeatureOptions, CheckNamesTheKey) {
   o = FeatureOptions{};
   o.num_levels = 0;
   EXPECT_NE(CheckMessage(o).find("features.num_levels"), std::string::npos);
+  o = FeatureOptions{};
+  o.refill_margin_px = -1;
+  EXPECT_EQ(CheckMessage(o), "features.refill_margin_px must be in [0, 64], got -1");
+  o.refill_margin_px = 65;
+  EXPECT_NE(CheckMessage(o).find("features.refill_margin_px"), std::string::npos);
 }
 
 TEST(FeatureOptions, DistributionRoundTrip) {

@@ -1,6 +1,6 @@
 // The pipeline's mask source "ground_truth": the given mask is the one features are removed by,
 // and a missing or malformed one is an error that names the frame. The debug feature list
-// accounts for every feature of the frame.
+// accounts for every feature of the frame. The refill spends the budget off the mask.
 
 #include "odometry/odometry_pipeline.h"
 
@@ -57,6 +57,35 @@ TEST(OdometryPipeline, GroundTruthMaskRemovesTheFeaturesOnIt) {
   EXPECT_NEAR(static_cast<double>(record.features_removed) / record.features_total, 0.5, 0.1);
   EXPECT_EQ(record.features_kept + record.features_removed, record.features_total);
   EXPECT_EQ(cv::countNonZero(pipeline.last_mask() != mask), 0);
+}
+
+TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask.colRange(0, 320).setTo(255);  // left half "dynamic"
+  OdometryPipeline plain(Camera{}, TruthMaskConfig());
+  const FrameRecord without = plain.Process(TexturedFrame(), cv::Mat(), mask);
+
+  OdometryConfig config = TruthMaskConfig();
+  config.features.refill_outside_mask = true;
+  config.features.refill_margin_px = 10;
+  OdometryPipeline pipeline(Camera{}, config);
+  DebugPanels debug;
+  const FrameRecord record = pipeline.Process(TexturedFrame(), cv::Mat(), mask, &debug);
+  // The mask removes the same features as without the refill...
+  EXPECT_EQ(record.features_removed, without.features_removed);
+  // ...but the kept ones are detected again on the right half: the whole budget (the random
+  // texture has corners everywhere), against about half of it without.
+  EXPECT_LT(without.features_kept, 0.6 * config.features.num_features);
+  EXPECT_GE(record.features_kept, 0.95 * config.features.num_features);
+  EXPECT_EQ(record.features_total, record.features_kept + record.features_removed);
+  // None of the kept features lies on the mask or within the margin of its edge (column 319).
+  int kept = 0;
+  for (const DebugFeature& f : debug.feature_list) {
+    if (f.status != DebugFeature::Status::kKept) continue;
+    ++kept;
+    EXPECT_GE(cvRound(f.pixel.x), 320 + config.features.refill_margin_px) << f.pixel;
+  }
+  EXPECT_EQ(kept, record.features_kept);
 }
 
 TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
