@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <ctime>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -13,8 +12,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
-#include "support/shared_data.h"
 #include "features/test_images.h"
+#include "support/process_cpu_time.h"
+#include "support/shared_data.h"
 
 namespace dynvo {
 namespace {
@@ -27,12 +27,7 @@ int CellsCovered(const std::vector<cv::KeyPoint>& keypoints) {
   return static_cast<int>(cells.size());
 }
 
-// CPU milliseconds used by the whole process (all threads) so far.
-double ProcessCpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+using test::ProcessCpuMs;
 
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());

@@ -2,23 +2,18 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <iostream>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "pose/synthetic_world.h"
+#include "support/process_cpu_time.h"
 
 namespace dynvo {
 namespace {
 
-// CPU milliseconds used by the process so far (robust to a loaded machine, unlike wall time).
-double ProcessCpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+using test::ProcessCpuMs;
 
 using test::MakeView;
 using test::RotationErrorDeg;

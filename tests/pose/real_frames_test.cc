@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -19,6 +18,7 @@
 #include "features/feature_extractor.h"
 #include "pose/pose_solver.h"
 #include "pose/projection_matcher.h"
+#include "support/process_cpu_time.h"
 #include "support/shared_data.h"
 
 namespace dynvo {
@@ -74,11 +74,7 @@ Pose GroundtruthAt(const std::vector<Stamped>& gt, double stamp) {
   return out;
 }
 
-double CpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+using test::ProcessCpuMs;
 
 TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
   DYNVO_REQUIRE_SHARED(shared);
@@ -123,10 +119,10 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
     }
     ASSERT_GT(points.size(), 300u);
 
-    const double c0 = CpuMs();
+    const double c0 = ProcessCpuMs();
     const std::vector<Match> matches = MatchByProjection(points, descriptors, b, camera,
                                                          Pose::Identity(), match_options, &angles);
-    const double c1 = CpuMs();
+    const double c1 = ProcessCpuMs();
     std::vector<Eigen::Vector3d> matched_points;
     std::vector<Eigen::Vector2d> matched_pixels;
     for (const Match& m : matches) {
@@ -134,7 +130,7 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
       matched_pixels.push_back(b.pixels[m.feature_index]);
     }
     const PoseEstimate estimate = EstimatePose(matched_points, matched_pixels, camera, pose_options);
-    const double c2 = CpuMs();
+    const double c2 = ProcessCpuMs();
     ASSERT_TRUE(estimate.ok) << "frames " << first << "," << second << ": " << estimate.failure;
     match_ms.push_back(c1 - c0);
     pose_ms.push_back(c2 - c1);
