@@ -151,9 +151,7 @@ int main(int argc, char** argv) {
 
   try {
     const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
-    dynvo::TumDatasetOptions dataset_options = config.dataset;
-    dataset_options.camera = config.CameraOverride();
-    const dynvo::TumDataset dataset(dataset_dir, dataset_options);
+    const dynvo::TumDataset dataset(dataset_dir, config.ReaderOptions());
     size_t count = dataset.size();
     if (max_frames > 0) count = std::min(count, static_cast<size_t>(max_frames));
     std::vector<dynvo::RgbdFrame> frames;

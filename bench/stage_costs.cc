@@ -76,9 +76,7 @@ int main(int argc, char** argv) {
 
   try {
     const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
-    dynvo::TumDatasetOptions dataset_options = config.dataset;
-    dataset_options.camera = config.CameraOverride();
-    const dynvo::TumDataset dataset(dataset_dir, dataset_options);
+    const dynvo::TumDataset dataset(dataset_dir, config.ReaderOptions());
     const size_t count = std::min(dataset.size(), static_cast<size_t>(max_frames));
     std::vector<dynvo::RgbdFrame> frames;
     for (size_t i = 0; i < count; ++i) frames.push_back(dataset.Load(i));

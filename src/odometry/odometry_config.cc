@@ -32,6 +32,12 @@ std::optional<Camera> OdometryConfig::CameraOverride() const {
   return TumCameraForSequence("");  // ros_default
 }
 
+TumDatasetOptions OdometryConfig::ReaderOptions() const {
+  TumDatasetOptions options = dataset;
+  options.camera = CameraOverride();
+  return options;
+}
+
 void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   // dataset
   r->Bind("dataset.max_time_difference", &c->dataset.max_time_difference,

@@ -52,6 +52,8 @@ struct OdometryConfig {
   void Check() const;
   // The intrinsics override for the dataset reader (nullopt for "auto").
   std::optional<Camera> CameraOverride() const;
+  // The dataset reader's options: `dataset` with CameraOverride() as its camera.
+  TumDatasetOptions ReaderOptions() const;
 };
 
 // Binds every key of `config` ("section.field") into `registry`.

@@ -98,9 +98,7 @@ struct RunTally {
 
 nlohmann::json RunOdometry(const RunRequest& request) {
   const OdometryConfig config = LoadOdometryConfig(request.config_path, request.overrides);
-  TumDatasetOptions dataset_options = config.dataset;
-  dataset_options.camera = config.CameraOverride();
-  const TumDataset dataset(request.dataset, dataset_options);
+  const TumDataset dataset(request.dataset, config.ReaderOptions());
   OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area());
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())
     throw InputError("dynamic_mask.source \"ground_truth\": " + dataset.folder() +

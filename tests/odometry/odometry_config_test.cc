@@ -79,6 +79,15 @@ TEST(OdometryConfig, OverridesWinOverTheFile) {
   EXPECT_DOUBLE_EQ(c.CameraOverride()->fx, 517.3);
 }
 
+TEST(OdometryConfig, ReaderOptionsCarryTheDatasetKeysAndTheCamera) {
+  const OdometryConfig c = LoadOdometryConfig("", {"camera.source=fr1", "dataset.depth_factor=1000"});
+  const TumDatasetOptions options = c.ReaderOptions();
+  EXPECT_DOUBLE_EQ(options.depth_factor, 1000.0);
+  ASSERT_TRUE(options.camera.has_value());
+  EXPECT_DOUBLE_EQ(options.camera->fx, 517.3);
+  EXPECT_FALSE(LoadOdometryConfig("", {}).ReaderOptions().camera.has_value());  // "auto"
+}
+
 TEST(OdometryConfig, EchoReloadsToTheSameConfig) {
   const OdometryConfig c = LoadOdometryConfig(ConfigPath("paper.json"), {"features.num_features=700"});
   test::TempDir dir;
