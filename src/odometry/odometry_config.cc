@@ -18,6 +18,11 @@ void OdometryConfig::Check() const {
   klt.Check();
   homography.Check();
   dynamic_mask.Check();
+  depth_change.Check();
+  if (depth_change.enabled && !dynamic_mask_enabled)
+    throw InputError("depth_change.enabled needs dynamic_mask.enabled (the baseline has no mask)");
+  if (depth_change.enabled && dynamic_mask_source != MaskSource::kDifference)
+    throw InputError("depth_change.enabled needs dynamic_mask.source \"difference\"");
   features.Check();
   tracker.Check();
   run.Check();
@@ -126,6 +131,16 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
       [m](const std::string& s) { m->backward = ParseBackwardMode(s, "dynamic_mask.backward"); },
       "backward detection: none, t-1 against t, or t+1 against t (one frame of latency)");
   r->Bind("dynamic_mask.rounds", &m->rounds, "mask / homography re-estimation rounds");
+  // depth change
+  DepthChangeOptions* d = &c->depth_change;
+  r->Bind("depth_change.enabled", &d->enabled,
+          "add to the dynamic mask the pixels whose depth changed between the last frame and the one "
+          "depth_change.frames before it, by their estimated poses (what moves along the line of sight)");
+  r->Bind("depth_change.frames", &d->frames, "compare with the depth image this many frames back (1-10)");
+  r->Bind("depth_change.threshold", &d->threshold, "relative depth change that marks a pixel (0-1)");
+  r->Bind("depth_change.open_px", &d->open_px, "side of the square opening that drops specks (0 = none)");
+  r->Bind("depth_change.max_share", &d->max_share,
+          "a depth-change mask over more of the image than this is dropped: the poses disagree, not the scene");
   // features
   FeatureOptions* f = &c->features;
   r->Bind("features.num_features", &f->num_features, "ORB features per frame");

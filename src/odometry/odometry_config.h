@@ -7,6 +7,7 @@
 
 #include "core/camera.h"
 #include "dataset/tum_dataset.h"
+#include "dynamic_mask/depth_change.h"
 #include "dynamic_mask/dynamic_mask_options.h"
 #include "ego_motion/homography.h"
 #include "ego_motion/klt_tracker.h"
@@ -44,6 +45,7 @@ struct OdometryConfig {
   bool dynamic_mask_enabled = true;  // false = the baseline: same pipeline, no dynamic handling
   MaskSource dynamic_mask_source = MaskSource::kDifference;  // with dynamic_mask_enabled
   DynamicMaskOptions dynamic_mask;
+  DepthChangeOptions depth_change;  // with dynamic_mask_enabled and the difference source
   FeatureOptions features;
   TrackerOptions tracker;
   RunOptions run;

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -114,6 +115,8 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
 
   // 1. Dynamic mask (skipped in the baseline and on the first frame), or the given one.
   last_mask_.release();
+  bool has_current_from_previous = false;  // the detector's homography, frame t-1 -> t
+  Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();
   if (NeedsTruthMask()) {
     const auto t = Clock::now();
     last_mask_ = truth_mask != 0;
@@ -152,6 +155,8 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
       record.times.dynamic_mask_ms = MsSince(t);
       record.mask_ok = mask.ok;
       record.mask_note = mask.ok ? "" : mask.failure;
+      has_current_from_previous = mask.ok;
+      current_from_previous = mask.current_from_previous;
       if (mask.ok) {
         last_mask_ = mask.mask;
         record.dynamic_ratio = mask.dynamic_ratio;
@@ -165,6 +170,30 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
         debug->fused_mask = mask.mask;
       }
     }
+  }
+
+  // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
+  // between the last frame and the one `frames` before it, whose poses are both estimated
+  // already, and carried into this frame by the detector's homography (one frame of lag).
+  const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
+  if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
+      past_depths_.size() >= span) {
+    const auto t = Clock::now();
+    const PastDepth& last = past_depths_.back();
+    const PastDepth& earlier = past_depths_[past_depths_.size() - span];
+    const cv::Mat changed_last =
+        DepthChangeMask(last.depth, earlier.depth, camera_,
+                        earlier.world_from_camera.inverse() * last.world_from_camera, config_.depth_change);
+    cv::Mat h, changed;
+    cv::eigen2cv(current_from_previous, h);
+    cv::warpPerspective(changed_last, changed, h, changed_last.size(), cv::INTER_NEAREST);
+    // A change over much of the image means the poses disagree, not the scene: no mask then.
+    if (DynamicRatio(changed) <= config_.depth_change.max_share) {
+      last_mask_ = last_mask_.empty() ? changed : (last_mask_ | changed);
+      record.dynamic_ratio = DynamicRatio(last_mask_);
+      if (debug) debug->fused_mask = last_mask_;
+    }
+    record.times.dynamic_mask_ms += MsSince(t);
   }
 
   // 3. Features minus the dynamic ones.
@@ -217,6 +246,14 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.times.local_ba_ms = tracking.local_ba_ms;
 
   previous_gray_ = frame.gray;
+  if (config_.depth_change.enabled) {
+    if (frame.depth.empty() || tracking.state == TrackingState::kLost) {
+      past_depths_.clear();  // no depth, or a pose that is only the motion model's
+    } else {
+      past_depths_.push_back({frame.depth, tracking.world_from_camera});
+      if (past_depths_.size() > span) past_depths_.pop_front();
+    }
+  }
   record.times.processing_ms = MsSince(start);
   return record;
 }

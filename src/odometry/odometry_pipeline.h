@@ -4,6 +4,7 @@
 // Ceres refinement, keyframes and local bundle adjustment. With the mask stage switched off
 // it is the baseline, identical otherwise.
 
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -79,6 +80,11 @@ class OdometryPipeline {
   cv::Mat next_gray_;                 // triplet: the frame t+1 of the last call ...
   TrackingPyramid next_pyramid_;      // ... and its pyramid (frame t's pyramid when it comes back as current)
   PointTracks next_tracks_;           // triplet: the last call's t -> t+1 tracks (DynamicMaskResult::next_tracks)
+  struct PastDepth {
+    cv::Mat depth;            // CV_32FC1 metres
+    Pose world_from_camera;   // as estimated
+  };
+  std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
 };
 
 }  // namespace dynvo

@@ -79,6 +79,20 @@ TEST(OdometryConfig, OverridesWinOverTheFile) {
   EXPECT_DOUBLE_EQ(c.CameraOverride()->fx, 517.3);
 }
 
+TEST(OdometryConfig, DepthChangeNeedsTheDetector) {
+  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {"depth_change.enabled=true"}));
+  try {
+    LoadOdometryConfig(ConfigPath("baseline.json"), {"depth_change.enabled=true"});
+    ADD_FAILURE() << "the baseline has no mask to add to";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("depth_change.enabled needs dynamic_mask.enabled"), std::string::npos);
+  }
+  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"),
+                                  {"depth_change.enabled=true", "dynamic_mask.source=ground_truth"}),
+               InputError);
+  EXPECT_THROW(LoadOdometryConfig("", {"depth_change.frames=11"}), InputError);
+}
+
 TEST(OdometryConfig, ReaderOptionsCarryTheDatasetKeysAndTheCamera) {
   const OdometryConfig c = LoadOdometryConfig("", {"camera.source=fr1", "dataset.depth_factor=1000"});
   const TumDatasetOptions options = c.ReaderOptions();
