@@ -1,7 +1,6 @@
 #include "dynamic_mask/depth_change.h"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -14,10 +13,7 @@ namespace {
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "depth_change." << field << " must be " << rule << ", got " << value;
-  throw InputError(message.str());
+  RequireOption(ok, "depth_change", field, rule, value);
 }
 
 }  // namespace

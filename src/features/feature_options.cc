@@ -1,7 +1,6 @@
 #include "features/feature_options.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 
@@ -11,10 +10,7 @@ namespace {
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "features." << field << " must be " << rule << ", got " << value;
-  throw InputError(message.str());
+  RequireOption(ok, "features", field, rule, value);
 }
 
 }  // namespace

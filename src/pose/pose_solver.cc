@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <sstream>
 #include <utility>
 
 #include <ceres/ceres.h>
@@ -23,10 +22,7 @@ constexpr double kConfidence = 0.99;    // RANSAC stops early once this confiden
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "pose." << field << " must be " << rule << ", got " << value;
-  throw InputError(message.str());
+  RequireOption(ok, "pose", field, rule, value);
 }
 
 void CheckSizes(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,

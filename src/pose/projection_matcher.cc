@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <cstring>
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 
@@ -18,10 +17,7 @@ constexpr int kHistogramBins = 30;  // rotation-consistency histogram (12 degree
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "matching." << field << " must be " << rule << ", got " << value;
-  throw InputError(message.str());
+  RequireOption(ok, "matching", field, rule, value);
 }
 
 // Feature indices bucketed by undistorted pixel on a regular grid.
