@@ -9,22 +9,14 @@
 
 namespace dynvo {
 
-namespace {
-
-template <typename T>
-void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  RequireOption(ok, "depth_change", field, rule, value);
-}
-
-}  // namespace
-
 void DepthChangeOptions::Check() const {
-  Require(frames >= 1 && frames <= 10, "frames", "in [1, 10]", frames);
-  Require(std::isfinite(threshold) && threshold > 0.0 && threshold <= 1.0, "threshold",
-          "in (0, 1]", threshold);
-  Require(open_px >= 0 && open_px <= 31, "open_px", "in [0, 31]", open_px);
-  Require(std::isfinite(max_share) && max_share > 0.0 && max_share <= 1.0, "max_share", "in (0, 1]",
-          max_share);
+  const std::string section = "depth_change";
+  RequireOption(frames >= 1 && frames <= 10, section, "frames", "in [1, 10]", frames);
+  RequireOption(std::isfinite(threshold) && threshold > 0.0 && threshold <= 1.0, section,
+                "threshold", "in (0, 1]", threshold);
+  RequireOption(open_px >= 0 && open_px <= 31, section, "open_px", "in [0, 31]", open_px);
+  RequireOption(std::isfinite(max_share) && max_share > 0.0 && max_share <= 1.0, section,
+                "max_share", "in (0, 1]", max_share);
 }
 
 cv::Mat DepthChangeMask(const cv::Mat& depth, const cv::Mat& earlier_depth, const Camera& camera,

@@ -3,8 +3,6 @@
 #include <cmath>
 #include <utility>
 
-#include <opencv2/imgproc.hpp>
-
 #include "core/error.h"
 
 namespace dynvo {
@@ -55,17 +53,6 @@ void AppendFeatures(const FrameFeatures& from, FrameFeatures* to) {
     to->descriptors = from.descriptors.clone();
   else
     cv::vconcat(to->descriptors, from.descriptors, to->descriptors);
-}
-
-cv::Mat GrowMask(const cv::Mat& mask, int margin_px) {
-  if (!mask.empty() && mask.type() != CV_8UC1) throw InputError("GrowMask: mask must be CV_8UC1");
-  if (margin_px < 0)
-    throw InputError("GrowMask: margin_px must be >= 0, got " + std::to_string(margin_px));
-  if (mask.empty() || margin_px == 0) return mask.clone();
-  cv::Mat grown;
-  cv::dilate(mask, grown,
-             cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * margin_px + 1, 2 * margin_px + 1)));
-  return grown;
 }
 
 FeatureSplit SplitByMask(const FrameFeatures& features, const cv::Mat& mask) {

@@ -23,11 +23,6 @@ struct FeatureSplit {
 // InputError when the mask is not CV_8UC1.
 FeatureSplit SplitByMask(const FrameFeatures& features, const cv::Mat& mask);
 
-// `mask` (CV_8UC1) grown by `margin_px` pixels on every side (a square dilation): what a refill
-// excludes from detection, so that no new corner sits on the mask's outline either. An empty
-// mask stays empty. Throws InputError when the mask is not CV_8UC1 or margin_px < 0.
-cv::Mat GrowMask(const cv::Mat& mask, int margin_px);
-
 // The features at `indices`, in that order.
 FrameFeatures SelectFeatures(const FrameFeatures& features, const std::vector<int>& indices);
 

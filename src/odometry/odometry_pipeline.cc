@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
+#include "dynamic_mask/mask_morphology.h"
 #include "features/feature_filter.h"
 
 namespace dynvo {
@@ -216,8 +217,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // Refill: the budget the masked features took is detected again off the mask and its margin.
   if (config_.features.refill_outside_mask && split.removed.size() > 0) {
     t = Clock::now();
-    split.kept = extractor_.Extract(frame.gray, frame.depth, camera_,
-                                    GrowMask(last_mask_, config_.features.refill_margin_px));
+    cv::Mat exclude = last_mask_.clone();  // the mask grown by the margin on every side
+    DilateMask(MorphShape::kRect, 2 * config_.features.refill_margin_px + 1, 1, &exclude);
+    split.kept = extractor_.Extract(frame.gray, frame.depth, camera_, exclude);
     split.kept_indices.clear();  // the kept features no longer index the first extraction
     features_ms += MsSince(t);
   }

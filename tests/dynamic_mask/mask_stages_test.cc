@@ -226,6 +226,29 @@ TEST(MaskMorphology, DilationGrowsByTheKernel) {
   EXPECT_EQ(cv::countNonZero(cross), 9);
 }
 
+// How the pipeline grows a mask by a margin m for features.refill_outside_mask: a square of
+// side 2m + 1.
+TEST(MaskMorphology, SquareDilationAddsTheMarginOnEverySide) {
+  cv::Mat mask(40, 60, CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(20, 10, 5, 3)).setTo(255);  // columns 20-24, rows 10-12
+  cv::Mat grown = mask.clone();
+  DilateMask(MorphShape::kRect, 2 * 4 + 1, 1, &grown);
+  ASSERT_EQ(grown.type(), CV_8UC1);
+  EXPECT_EQ(cv::countNonZero(grown), (5 + 8) * (3 + 8));
+  EXPECT_NE(grown.at<uint8_t>(6, 16), 0);   // corner of the grown box
+  EXPECT_NE(grown.at<uint8_t>(16, 28), 0);
+  EXPECT_EQ(grown.at<uint8_t>(5, 20), 0);   // one pixel beyond the margin
+  EXPECT_EQ(grown.at<uint8_t>(11, 29), 0);
+  cv::Mat same = mask.clone();
+  DilateMask(MorphShape::kRect, 2 * 0 + 1, 1, &same);  // margin 0
+  EXPECT_EQ(cv::countNonZero(same != mask), 0);
+  cv::Mat empty(0, 0, CV_8UC1);
+  DilateMask(MorphShape::kRect, 9, 1, &empty);
+  EXPECT_TRUE(empty.empty());
+  cv::Mat wrong(4, 4, CV_32FC1, cv::Scalar(0));
+  EXPECT_THROW(DilateMask(MorphShape::kRect, 9, 1, &wrong), InputError);
+}
+
 TEST(MaskMorphology, CleanMaskErodesThenDilates) {
   cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
   mask(cv::Rect(5, 5, 2, 2)).setTo(255);     // noise: removed, not regrown

@@ -94,21 +94,5 @@ TEST(FeatureFilter, AppendFeaturesRestoresASplit) {
   EXPECT_THROW(AppendFeatures(f, &wide), InputError);
 }
 
-TEST(FeatureFilter, GrowMaskAddsTheMarginOnEverySide) {
-  cv::Mat mask(40, 60, CV_8UC1, cv::Scalar(0));
-  mask(cv::Rect(20, 10, 5, 3)).setTo(255);  // columns 20-24, rows 10-12
-  const cv::Mat grown = GrowMask(mask, 4);
-  ASSERT_EQ(grown.type(), CV_8UC1);
-  EXPECT_EQ(cv::countNonZero(grown), (5 + 8) * (3 + 8));
-  EXPECT_NE(grown.at<uint8_t>(6, 16), 0);   // corner of the grown box
-  EXPECT_NE(grown.at<uint8_t>(16, 28), 0);
-  EXPECT_EQ(grown.at<uint8_t>(5, 20), 0);   // one pixel beyond the margin
-  EXPECT_EQ(grown.at<uint8_t>(11, 29), 0);
-  EXPECT_EQ(cv::countNonZero(GrowMask(mask, 0) != mask), 0);
-  EXPECT_TRUE(GrowMask(cv::Mat(), 4).empty());
-  EXPECT_THROW(GrowMask(mask, -1), InputError);
-  EXPECT_THROW(GrowMask(cv::Mat(4, 4, CV_32FC1, cv::Scalar(0)), 4), InputError);
-}
-
 }  // namespace
 }  // namespace dynvo
