@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "dataset/tum_dataset.h"
+#include "dynamic_mask/depth_change.h"
 #include "dynamic_mask/difference_threshold.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "dynamic_mask/frame_difference.h"
@@ -28,6 +29,7 @@
 #include "features/feature_filter.h"
 #include "odometry/odometry_config.h"
 #include "sample_statistics.h"
+#include "synth/trajectory_sampling.h"
 
 namespace {
 
@@ -131,6 +133,21 @@ int main(int argc, char** argv) {
         return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
       });
       ++rounds_run[mask.rounds_run];
+      // Depth change against the frame depth_change.frames back, with the groundtruth's relative
+      // pose where the sequence has one (the identity otherwise: the cost hardly depends on it).
+      const size_t back = static_cast<size_t>(config.depth_change.frames);
+      if (i >= back && !frames[i].depth.empty() && !frames[i - back].depth.empty()) {
+        dynvo::Pose world_from_current = dynvo::Pose::Identity(), world_from_earlier = dynvo::Pose::Identity();
+        if (dataset.has_groundtruth() &&
+            !(dynvo::InterpolatePose(dataset.groundtruth(), frames[i].stamp, 0.1, &world_from_current) &&
+              dynvo::InterpolatePose(dataset.groundtruth(), frames[i - back].stamp, 0.1, &world_from_earlier))) {
+          world_from_current = world_from_earlier = dynvo::Pose::Identity();
+        }
+        steps.Time("depth change (" + std::to_string(back) + " frames back)", [&] {
+          return dynvo::DepthChangeMask(frames[i].depth, frames[i - back].depth, dataset.camera(),
+                                        world_from_earlier.inverse() * world_from_current, config.depth_change);
+        });
+      }
     }
     std::printf("stage_costs: %zu frame pairs of %s, config %s\n", frames.size() - 1, dataset.name().c_str(),
                 config_path.empty() ? "built-in" : config_path.c_str());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -25,30 +26,38 @@ cv::Mat DepthChangeMask(const cv::Mat& depth, const cv::Mat& earlier_depth, cons
   if (depth.type() != CV_32FC1 || earlier_depth.type() != CV_32FC1 ||
       depth.size() != earlier_depth.size())
     throw InputError("DepthChangeMask: both depth images must be CV_32FC1 of the same size");
-  const Eigen::Matrix3d rotation = earlier_from_current.linear();
-  const Eigen::Vector3d translation = earlier_from_current.translation();
-  // Relative change per pixel; 0 where there is nothing to compare.
-  cv::Mat change(depth.size(), CV_32FC1, cv::Scalar(0));
+  // The point behind pixel (u, v) at depth d, in the earlier frame, is d * (row_ray[v] +
+  // column_ray[u]) + translation: the rotated bearing split into its row and column parts.
+  const Eigen::Matrix3f rotation = earlier_from_current.linear().cast<float>();
+  const Eigen::Vector3f translation = earlier_from_current.translation().cast<float>();
+  std::vector<Eigen::Vector3f> column_ray(static_cast<size_t>(depth.cols));
+  for (int u = 0; u < depth.cols; ++u)
+    column_ray[static_cast<size_t>(u)] = rotation.col(0) * static_cast<float>((u - camera.cx) / camera.fx);
+  const float fx = static_cast<float>(camera.fx), fy = static_cast<float>(camera.fy);
+  const float cx = static_cast<float>(camera.cx), cy = static_cast<float>(camera.cy);
+  const float threshold = static_cast<float>(options.threshold);
+  // 255 where the relative change exceeds the threshold; 0 also where there is nothing to compare.
+  cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
   for (int v = 0; v < depth.rows; ++v) {
+    const Eigen::Vector3f row_ray = rotation.col(1) * static_cast<float>((v - camera.cy) / camera.fy) + rotation.col(2);
     const float* d_row = depth.ptr<float>(v);
-    float* c_row = change.ptr<float>(v);
+    uchar* mask_row = mask.ptr<uchar>(v);
     for (int u = 0; u < depth.cols; ++u) {
-      const double d = d_row[u];
-      if (!(d > 0.0)) continue;
-      const Eigen::Vector3d point((u - camera.cx) / camera.fx * d, (v - camera.cy) / camera.fy * d, d);
-      const Eigen::Vector3d earlier = rotation * point + translation;
-      if (earlier.z() < 0.05) continue;
-      const int eu = static_cast<int>(std::lround(camera.fx * earlier.x() / earlier.z() + camera.cx));
-      const int ev = static_cast<int>(std::lround(camera.fy * earlier.y() / earlier.z() + camera.cy));
+      const float d = d_row[u];
+      if (!(d > 0.0f)) continue;
+      const Eigen::Vector3f earlier = d * (row_ray + column_ray[static_cast<size_t>(u)]) + translation;
+      if (earlier.z() < 0.05f) continue;
+      const float inverse_z = 1.0f / earlier.z();
+      const int eu = cvRound(fx * earlier.x() * inverse_z + cx);
+      const int ev = cvRound(fy * earlier.y() * inverse_z + cy);
       if (eu < 0 || ev < 0 || eu >= depth.cols || ev >= depth.rows) continue;
-      const double measured = earlier_depth.at<float>(ev, eu);
-      if (!(measured > 0.0)) continue;
-      c_row[u] = static_cast<float>(std::abs(earlier.z() - measured) / earlier.z());
+      const float measured = earlier_depth.ptr<float>(ev)[eu];
+      if (!(measured > 0.0f)) continue;
+      if (std::abs(earlier.z() - measured) * inverse_z > threshold) mask_row[u] = 255;
     }
   }
-  cv::Mat least;  // the smallest change in each 3x3 neighbourhood
-  cv::erode(change, least, cv::Mat::ones(3, 3, CV_8UC1));
-  cv::Mat mask = least > options.threshold;
+  // Kept where the change exceeds the threshold everywhere in the 3x3 neighbourhood.
+  cv::erode(mask, mask, cv::Mat::ones(3, 3, CV_8UC1));
   if (options.open_px > 1)
     cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat::ones(options.open_px, options.open_px, CV_8UC1));
   return mask;
