@@ -14,12 +14,12 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${DYNVO_BUILD_DIR:-$root/build}"
 sequences="${DYNVO_SEQUENCES_DIR:-$root/out/bench/scene_seeds}"
-work="${DYNVO_BENCH_DIR:-$root/out/bench/${NAME:-ratio_spread}}"
+results_name="${NAME:-ratio_spread}"
+work="${DYNVO_BENCH_DIR:-$root/out/bench/$results_name}"
 frames="${FRAMES:-300}"
 scene_seeds="${SCENE_SEEDS:-1 2 3}"
 budgets="${BUDGETS:-990 1000 1010}"
 config="${CONFIG:-paper}"
-results_name="${NAME:-ratio_spread}"
 overrides=()
 for kv in ${SET:-}; do overrides+=(--set "$kv"); done
 results="$root/bench/results"

@@ -85,9 +85,9 @@ TEST(DepthChange, PixelsWithoutDepthAreNeverMarked) {
 TEST(DepthChange, OptionsAndInputsAreChecked) {
   DepthChangeOptions options;
   options.frames = 0;
-  EXPECT_THROW(options.Check(), InputError);
   try {
     options.Check();
+    ADD_FAILURE() << "depth_change.frames = 0 accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "depth_change.frames must be in [1, 10], got 0");
   }
