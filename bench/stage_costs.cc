@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "dataset/tum_dataset.h"
+#include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/depth_change.h"
 #include "dynamic_mask/difference_threshold.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
@@ -133,6 +134,12 @@ int main(int argc, char** argv) {
         return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
       });
       ++rounds_run[mask.rounds_run];
+      // The background fill of features.refill_from_background, on the frames the mask marks.
+      if (mask.ok && cv::countNonZero(mask.mask) > 0)
+        steps.Time("background fill (mask frames)", [&] {
+          return dynvo::FillMaskFromBackground(current, mask.mask, previous, mask.current_from_previous,
+                                               dynvo::kBackgroundFillMarginPx, area);
+        });
       // Depth change against the frame depth_change.frames back, with the groundtruth's relative
       // pose where the sequence has one (the identity otherwise: the cost hardly depends on it).
       const size_t back = static_cast<size_t>(config.depth_change.frames);

@@ -28,6 +28,8 @@ void FeatureOptions::Check() const {
           "> features.min_depth_m", max_depth_m);
   Require(refill_margin_px >= 0 && refill_margin_px <= 64, "refill_margin_px", "in [0, 64]",
           refill_margin_px);
+  if (refill_from_background && !refill_outside_mask)
+    throw InputError("features.refill_from_background needs features.refill_outside_mask=true");
 }
 
 FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key) {

@@ -23,6 +23,10 @@ struct FeatureOptions {
   // num_features budget lands on the static part (a second extraction on such frames).
   bool refill_outside_mask = false;
   int refill_margin_px = 4;         // pixels the mask is grown by for the refill (0-64)
+  // With refill_outside_mask: the refill describes frame t with the mask's pixels replaced by
+  // the static background seen there in earlier frames (dynamic_mask/background_fill.h), so
+  // that features near the mask are not described on what moves.
+  bool refill_from_background = false;
 
   // Throws InputError naming the key "features.<field>" when a field is out of range.
   void Check() const;

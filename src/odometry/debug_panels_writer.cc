@@ -70,6 +70,7 @@ void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat&
     tiles.push_back(tile);
   }
   WriteFeatureList(dir + prefix + "features.csv", panels.feature_list);
+  if (!panels.background.empty()) Save(dir + prefix + "background.png", panels.background);
   cv::Mat top, bottom, grid;
   cv::hconcat(std::vector<cv::Mat>(tiles.begin(), tiles.begin() + 3), top);
   cv::hconcat(std::vector<cv::Mat>(tiles.begin() + 3, tiles.end()), bottom);

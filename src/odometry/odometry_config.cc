@@ -159,6 +159,9 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
           "refill_margin_px, so the whole budget lands on the static part (costs a second extraction)");
   r->Bind("features.refill_margin_px", &f->refill_margin_px,
           "pixels the mask is grown by for the refill (0-64)");
+  r->Bind("features.refill_from_background", &f->refill_from_background,
+          "with refill_outside_mask: the refill describes the frame with the mask's pixels taken from the "
+          "static background of earlier frames (carried by the ego-motion homography) instead of what moves");
   r->Bind("features.min_depth_m", &f->min_depth_m, "nearer depth gives no 3D point");
   r->Bind("features.max_depth_m", &f->max_depth_m, "farther depth gives no 3D point");
   // matching, pose, map, keyframes, local BA, tracking

@@ -9,8 +9,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "dynamic_mask/mask_morphology.h"
+#include "ego_motion/homography.h"
 #include "features/feature_filter.h"
 
 namespace dynvo {
@@ -115,11 +117,19 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   }
 
   // 1. Dynamic mask (skipped in the baseline and on the first frame), or the given one.
+  const cv::Mat previous_mask = last_mask_;
   last_mask_.release();
-  bool has_current_from_previous = false;  // the detector's homography, frame t-1 -> t
+  bool has_current_from_previous = false;  // the ego-motion homography, frame t-1 -> t
   Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();
   if (NeedsTruthMask()) {
     const auto t = Clock::now();
+    if (config_.features.refill_from_background && !previous_gray_.empty()) {
+      // The background fill needs the camera's motion, which the detector would have given.
+      const PointTracks tracks = TrackCorners(previous_gray_, frame.gray, config_.klt, previous_mask);
+      const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, config_.homography);
+      has_current_from_previous = h.ok;
+      current_from_previous = h.current_from_previous;
+    }
     last_mask_ = truth_mask != 0;
     record.mask_ok = true;
     record.dynamic_ratio = DynamicRatio(last_mask_);
@@ -214,12 +224,25 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     split.kept = std::move(features);
   }
   record.times.filter_ms = MsSince(t);
+  // The frame as the refill describes it: with refill_from_background, the mask's pixels are the
+  // static background of earlier frames, kept for the next frame (also when nothing is refilled,
+  // so that what moves stays out of it).
+  cv::Mat described = frame.gray;
+  if (config_.features.refill_from_background) {
+    t = Clock::now();
+    if (!last_mask_.empty() && has_current_from_previous)
+      described = FillMaskFromBackground(frame.gray, last_mask_, background_gray_, current_from_previous,
+                                         kBackgroundFillMarginPx, image_area_);
+    background_gray_ = described;
+    if (debug) debug->background = described;
+    features_ms += MsSince(t);
+  }
   // Refill: the budget the masked features took is detected again off the mask and its margin.
   if (config_.features.refill_outside_mask && split.removed.size() > 0) {
     t = Clock::now();
     cv::Mat exclude = last_mask_.clone();  // the mask grown by the margin on every side
     DilateMask(MorphShape::kRect, 2 * config_.features.refill_margin_px + 1, 1, &exclude);
-    split.kept = extractor_.Extract(frame.gray, frame.depth, camera_, exclude);
+    split.kept = extractor_.Extract(described, frame.depth, camera_, exclude);
     split.kept_indices.clear();  // the kept features no longer index the first extraction
     features_ms += MsSince(t);
   }

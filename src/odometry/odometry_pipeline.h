@@ -40,6 +40,7 @@ struct DebugPanels {
   cv::Mat backward_mask;  // (empty when backward detection is off)
   cv::Mat fused_mask;     // union used to remove features
   cv::Mat features;       // frame t, kept features green, removed red
+  cv::Mat background;     // features.refill_from_background: frame t with the mask filled from earlier frames
   std::vector<DebugFeature> feature_list;  // every feature of frame t: the kept ones, then
                                            // the removed ones
 };
@@ -75,6 +76,7 @@ class OdometryPipeline {
   FrameTracker tracker_;
   cv::Mat previous_gray_;
   cv::Mat last_mask_;
+  cv::Mat background_gray_;  // refill_from_background: frame t-1 with its mask filled from earlier frames
   // Carried between frames by the dynamic-mask step so that no image is pyramided or tracked twice:
   TrackingPyramid previous_pyramid_;  // KLT pyramid of previous_gray_
   cv::Mat next_gray_;                 // triplet: the frame t+1 of the last call ...

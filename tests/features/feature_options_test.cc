@@ -44,6 +44,14 @@ TEST(FeatureOptions, CheckNamesTheKey) {
   EXPECT_NE(CheckMessage(o).find("features.refill_margin_px"), std::string::npos);
 }
 
+TEST(FeatureOptions, BackgroundFillNeedsTheRefill) {
+  FeatureOptions o;
+  o.refill_from_background = true;
+  EXPECT_EQ(CheckMessage(o), "features.refill_from_background needs features.refill_outside_mask=true");
+  o.refill_outside_mask = true;
+  EXPECT_EQ(CheckMessage(o), "");
+}
+
 TEST(FeatureOptions, DistributionRoundTrip) {
   for (FeatureDistribution d :
        {FeatureDistribution::kQuadtree, FeatureDistribution::kGrid, FeatureDistribution::kNone})

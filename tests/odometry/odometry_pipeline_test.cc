@@ -1,6 +1,7 @@
 // The pipeline's mask source "ground_truth": the given mask is the one features are removed by,
 // and a missing or malformed one is an error that names the frame. The debug feature list
-// accounts for every feature of the frame. The refill spends the budget off the mask.
+// accounts for every feature of the frame. The refill spends the budget off the mask, and with
+// refill_from_background describes the frame as it would look without what moves.
 
 #include "odometry/odometry_pipeline.h"
 
@@ -8,8 +9,12 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "dynamic_mask/background_fill.h"
+#include "dynamic_mask/mask_morphology.h"
+#include "features/feature_extractor.h"
 
 namespace dynvo {
 namespace {
@@ -86,6 +91,73 @@ TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
     EXPECT_GE(cvRound(f.pixel.x), 320 + config.features.refill_margin_px) << f.pixel;
   }
   EXPECT_EQ(kept, record.features_kept);
+}
+
+// Share of the kept features of `debug` that `reference` has too (same level, within 0.01 px).
+double ShareFoundIn(const DebugPanels& debug, const FrameFeatures& reference) {
+  int kept = 0, found = 0;
+  for (const DebugFeature& f : debug.feature_list) {
+    if (f.status != DebugFeature::Status::kKept) continue;
+    ++kept;
+    for (const cv::KeyPoint& k : reference.keypoints)
+      if (k.octave == f.octave && cv::norm(k.pt - f.pixel) < 0.01) {
+        ++found;
+        break;
+      }
+  }
+  return kept == 0 ? 0.0 : static_cast<double>(found) / kept;
+}
+
+TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
+  // A panning camera (6 px per frame) over a textured wall at 2 m; in frame 1 a patch of other
+  // texture covers part of it, and the ground-truth mask says where.
+  cv::Mat wall(480, 700, CV_8UC1);
+  cv::RNG(5).fill(wall, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(wall, wall, cv::Size(), 1.5);
+  RgbdFrame frames[2] = {TexturedFrame(), TexturedFrame()};
+  for (int i = 0; i < 2; ++i) {
+    frames[i].index = i;
+    frames[i].stamp = 0.033 * i;
+    frames[i].gray = wall(cv::Rect(6 * i, 0, 640, 480)).clone();
+  }
+  const cv::Mat clean = frames[1].gray.clone();  // frame 1 as it would be without the patch
+  const cv::Rect box(200, 150, 120, 160);
+  cv::Mat patch(box.size(), CV_8UC1);
+  cv::RNG(9).fill(patch, cv::RNG::UNIFORM, 0, 256);
+  patch.copyTo(frames[1].gray(box));
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask(box).setTo(255);
+
+  // The refill as it would detect and describe the patch-free frame 1.
+  OdometryConfig config = TruthMaskConfig();
+  config.features.refill_outside_mask = true;
+  cv::Mat exclude = mask.clone();
+  DilateMask(MorphShape::kRect, 2 * config.features.refill_margin_px + 1, 1, &exclude);
+  const FrameFeatures reference = FeatureExtractor(config.features).Extract(clean, frames[1].depth, Camera{}, exclude);
+
+  const auto run = [&](bool from_background) {
+    OdometryConfig c = config;
+    c.features.refill_from_background = from_background;
+    OdometryPipeline pipeline(Camera{}, c);
+    pipeline.Process(frames[0], cv::Mat(), cv::Mat::zeros(480, 640, CV_8UC1));
+    DebugPanels debug;
+    pipeline.Process(frames[1], cv::Mat(), mask, &debug);
+    return debug;
+  };
+  EXPECT_TRUE(run(false).background.empty());
+  const DebugPanels debug = run(true);
+  // The frame the refill described: the wall where the patch is (the camera's motion is
+  // estimated by KLT, so the warp is bilinear within a fraction of a pixel of the true shift:
+  // grey levels within 1 on average), frame 1 itself elsewhere.
+  ASSERT_EQ(debug.background.size(), clean.size());
+  cv::Mat error;
+  cv::absdiff(debug.background, clean, error);
+  EXPECT_LT(cv::mean(error(box))[0], 1.0);
+  cv::Mat grown = mask.clone();
+  DilateMask(MorphShape::kRect, 2 * kBackgroundFillMarginPx + 1, 1, &grown);
+  EXPECT_EQ(cv::countNonZero((debug.background != frames[1].gray) & ~grown), 0);
+  // And the features came from it: where the refill would find them without the patch.
+  EXPECT_GT(ShareFoundIn(debug, reference), 0.99);
 }
 
 TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
