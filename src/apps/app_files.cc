@@ -8,6 +8,23 @@
 
 namespace dynvo {
 
+int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
+  const std::string name = app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << name << ": error: " << e.what() << " (see " << name << " --help)\n";
+    return 2;
+  }
+  try {
+    return run();
+  } catch (const std::exception& e) {
+    std::cerr << name << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 void WriteOutputFile(const std::string& path, const std::string& content, bool force) {
   if (!force && std::filesystem::exists(path))
     ThrowFileError(path, 0, "already exists (use --force to overwrite)");

@@ -1,13 +1,22 @@
 #pragma once
-// Helpers shared by the rpe and ate executables: trajectories in, reports and files out.
+// Helpers shared by the rpe and ate executables: the command line, trajectories in, reports
+// and files out.
 
+#include <functional>
 #include <string>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "dataset/trajectory_io.h"
 
 namespace dynvo {
+
+// A tool's whole main: parses the command line with `app`, then calls `run` and returns its
+// exit code. --help prints and returns 0; a bad command line prints one line "<app name>: error:
+// ... (see <app name> --help)" on stderr and returns 2; an exception out of `run` prints
+// "<app name>: error: <what>" and returns 1.
+int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& run);
 
 // Writes `content` to `path`; an existing file is replaced only with `force`. Throws
 // InputError naming the file otherwise, or when it cannot be written.

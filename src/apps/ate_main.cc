@@ -1,20 +1,16 @@
 // ate: absolute trajectory error of an estimated TUM trajectory against groundtruth, with the
 // semantics of the TUM benchmark's evaluate_ate.py.
 
-#include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "apps/app_files.h"
-#include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "eval/ate.h"
 #include "eval/metrics_report.h"
 
-namespace {
-
-int Run(int argc, char** argv) {
+int main(int argc, char** argv) {
   CLI::App app{
       "Absolute trajectory error (ATE) of an estimated TUM trajectory, as the TUM benchmark's "
       "evaluate_ate.py computes it: stamps associated as associate.py does (greedy by "
@@ -42,36 +38,18 @@ int Run(int argc, char** argv) {
   app.add_option("--pairs-out", pairs_out,
                  "Write every associated pair as CSV (stamp_gt,stamp_est,trans_error_m)");
   app.add_flag("--force", force, "Overwrite existing --aligned-out / --pairs-out files");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "ate: error: " << e.what() << " (see ate --help)\n";
-    return 2;
-  }
-
-  options.Check();
-  const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
-  const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
-  const dynvo::AteResult result = dynvo::ComputeAte(gt, est, options);
-  if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::AtePairsCsv(result), force);
-  if (!aligned_out.empty())
-    dynvo::WriteOutputFile(aligned_out,
-                dynvo::FormatTrajectory(
-                    dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
-                force);
-  dynvo::PrintMetrics(json, dynvo::AteJson(result, options), dynvo::FormatAteText(result), gt_path,
-                      est_path);
-  return 0;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "ate: error: " << e.what() << "\n";
-    return 1;
-  }
+  return dynvo::RunTool(app, argc, argv, [&] {
+    options.Check();
+    const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
+    const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
+    const dynvo::AteResult result = dynvo::ComputeAte(gt, est, options);
+    if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::AtePairsCsv(result), force);
+    if (!aligned_out.empty())
+      dynvo::WriteOutputFile(
+          aligned_out, dynvo::FormatTrajectory(dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
+          force);
+    dynvo::PrintMetrics(json, dynvo::AteJson(result, options), dynvo::FormatAteText(result), gt_path,
+                        est_path);
+    return 0;
+  });
 }

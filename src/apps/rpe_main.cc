@@ -1,20 +1,16 @@
 // rpe: relative pose error of an estimated TUM trajectory against groundtruth, with the
 // semantics of the TUM benchmark's evaluate_rpe.py.
 
-#include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "apps/app_files.h"
-#include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "eval/metrics_report.h"
 #include "eval/rpe.h"
 
-namespace {
-
-int Run(int argc, char** argv) {
+int main(int argc, char** argv) {
   CLI::App app{
       "Relative pose error (RPE) of an estimated TUM trajectory, as the TUM benchmark's "
       "evaluate_rpe.py --fixed_delta computes it: for every estimated pose i, j is the pose "
@@ -53,35 +49,18 @@ int Run(int argc, char** argv) {
                  "Write every compared pair as CSV (stamp_est_0,stamp_est_1,stamp_gt_0,"
                  "stamp_gt_1,trans_error_m,rot_error_deg)");
   app.add_flag("--force", force, "Overwrite an existing --pairs-out file");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "rpe: error: " << e.what() << " (see rpe --help)\n";
-    return 2;
-  }
-
-  options.fixed_delta = !all_pairs;
-  options.unit = dynvo::ParseDeltaUnit(delta_unit);
-  options.closest =
-      closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
-  options.Check();
-  const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
-  const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
-  const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
-  if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
-  dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path,
-                      est_path);
-  return 0;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "rpe: error: " << e.what() << "\n";
-    return 1;
-  }
+  return dynvo::RunTool(app, argc, argv, [&] {
+    options.fixed_delta = !all_pairs;
+    options.unit = dynvo::ParseDeltaUnit(delta_unit);
+    options.closest =
+        closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
+    options.Check();
+    const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
+    const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
+    const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
+    if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
+    dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path,
+                        est_path);
+    return 0;
+  });
 }
