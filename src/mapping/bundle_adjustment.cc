@@ -17,23 +17,12 @@
 namespace dynvo {
 
 void BundleAdjustmentOptions::Check() const {
-  if (window_keyframes < 1)
-    throw InputError("local_ba.window_keyframes must be >= 1, got " +
-                     std::to_string(window_keyframes));
-  if (max_iterations < 1)
-    throw InputError("local_ba.max_iterations must be >= 1, got " +
-                     std::to_string(max_iterations));
-  if (rounds < 1)
-    throw InputError("local_ba.rounds must be >= 1, got " + std::to_string(rounds));
-  if (!(huber_delta_px > 0.0))
-    throw InputError("local_ba.huber_delta_px must be > 0, got " +
-                     std::to_string(huber_delta_px));
-  if (!(outlier_threshold_px > 0.0))
-    throw InputError("local_ba.outlier_threshold_px must be > 0, got " +
-                     std::to_string(outlier_threshold_px));
-  if (!(virtual_baseline_m >= 0.0))
-    throw InputError("local_ba.virtual_baseline_m must be >= 0, got " +
-                     std::to_string(virtual_baseline_m));
+  RequireOption(window_keyframes >= 1, "local_ba", "window_keyframes", ">= 1", window_keyframes);
+  RequireOption(max_iterations >= 1, "local_ba", "max_iterations", ">= 1", max_iterations);
+  RequireOption(rounds >= 1, "local_ba", "rounds", ">= 1", rounds);
+  RequireOption(huber_delta_px > 0.0, "local_ba", "huber_delta_px", "> 0", huber_delta_px);
+  RequireOption(outlier_threshold_px > 0.0, "local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
+  RequireOption(virtual_baseline_m >= 0.0, "local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
 }
 
 namespace {

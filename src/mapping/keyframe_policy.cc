@@ -11,18 +11,11 @@ constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 }  // namespace
 
 void KeyframeOptions::Check() const {
-  if (max_frames_between < 1)
-    throw InputError("keyframes.max_frames_between must be >= 1, got " +
-                     std::to_string(max_frames_between));
-  if (!(min_tracked_ratio >= 0.0 && min_tracked_ratio <= 1.0))
-    throw InputError("keyframes.min_tracked_ratio must be in [0, 1], got " +
-                     std::to_string(min_tracked_ratio));
-  if (!(min_translation_m > 0.0))
-    throw InputError("keyframes.min_translation_m must be > 0, got " +
-                     std::to_string(min_translation_m));
-  if (!(min_rotation_deg > 0.0))
-    throw InputError("keyframes.min_rotation_deg must be > 0, got " +
-                     std::to_string(min_rotation_deg));
+  RequireOption(max_frames_between >= 1, "keyframes", "max_frames_between", ">= 1", max_frames_between);
+  RequireOption(min_tracked_ratio >= 0.0 && min_tracked_ratio <= 1.0,
+                "keyframes", "min_tracked_ratio", "in [0, 1]", min_tracked_ratio);
+  RequireOption(min_translation_m > 0.0, "keyframes", "min_translation_m", "> 0", min_translation_m);
+  RequireOption(min_rotation_deg > 0.0, "keyframes", "min_rotation_deg", "> 0", min_rotation_deg);
 }
 
 KeyframeDecision DecideKeyframe(const KeyframeOptions& options, int frames_since_keyframe,

@@ -19,10 +19,8 @@ void CheckDescriptor(const cv::Mat& descriptor, const char* caller) {
 }  // namespace
 
 void LocalMapOptions::Check() const {
-  if (max_keyframes < 2)
-    throw InputError("map.max_keyframes must be >= 2, got " + std::to_string(max_keyframes));
-  if (max_points < 1)
-    throw InputError("map.max_points must be >= 1, got " + std::to_string(max_points));
+  RequireOption(max_keyframes >= 2, "map", "max_keyframes", ">= 2", max_keyframes);
+  RequireOption(max_points >= 1, "map", "max_points", ">= 1", max_points);
 }
 
 LocalMap::LocalMap(const LocalMapOptions& options) : options_(options) { options_.Check(); }

@@ -70,12 +70,12 @@ void AddBox(const Eigen::Vector3d& mn, const Eigen::Vector3d& mx, const Pose& wo
 }
 
 void RoomOptions::Check() const {
-  if (!(width_m > 2.0)) throw InputError("room.width_m must be > 2, got " + std::to_string(width_m));
-  if (!(depth_m > 3.0)) throw InputError("room.depth_m must be > 3, got " + std::to_string(depth_m));
-  if (!(height_m > 2.0)) throw InputError("room.height_m must be > 2, got " + std::to_string(height_m));
-  if (!(texel_size_m >= 0.001 && texel_size_m <= 0.05))
-    throw InputError("room.texel_size_m must be in [0.001, 0.05], got " + std::to_string(texel_size_m));
-  if (furniture < 0) throw InputError("room.furniture must be >= 0, got " + std::to_string(furniture));
+  RequireOption(width_m > 2.0, "room", "width_m", "> 2", width_m);
+  RequireOption(depth_m > 3.0, "room", "depth_m", "> 3", depth_m);
+  RequireOption(height_m > 2.0, "room", "height_m", "> 2", height_m);
+  RequireOption(texel_size_m >= 0.001 && texel_size_m <= 0.05,
+                "room", "texel_size_m", "in [0.001, 0.05]", texel_size_m);
+  RequireOption(furniture >= 0, "room", "furniture", ">= 0", furniture);
 }
 
 std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed) {

@@ -26,17 +26,14 @@ void SensorNoiseOptions::Check() const {
   RequireNonNegative(rgb_noise_sigma, "rgb_noise_sigma");
   RequireNonNegative(depth_noise_base_m, "depth_noise_base_m");
   RequireNonNegative(depth_noise_quadratic, "depth_noise_quadratic");
-  if (!(depth_disparity_per_m > 0))
-    throw InputError("noise.depth_disparity_per_m must be > 0, got " + std::to_string(depth_disparity_per_m));
+  RequireOption(depth_disparity_per_m > 0, "noise", "depth_disparity_per_m", "> 0", depth_disparity_per_m);
   RequireNonNegative(depth_min_m, "depth_min_m");
-  if (!(depth_max_m > depth_min_m))
-    throw InputError("noise.depth_max_m must be > noise.depth_min_m, got " + std::to_string(depth_max_m));
+  RequireOption(depth_max_m > depth_min_m, "noise", "depth_max_m", "> noise.depth_min_m", depth_max_m);
   RequireNonNegative(depth_edge_jump, "depth_edge_jump");
   RequireProbability(depth_edge_hole_prob, "depth_edge_hole_prob");
   RequireProbability(depth_dropout_prob, "depth_dropout_prob");
-  if (!(depth_factor > 0 && depth_factor * depth_max_m <= 65535))
-    throw InputError("noise.depth_factor must be > 0 with depth_factor * depth_max_m <= 65535, got " +
-                     std::to_string(depth_factor));
+  RequireOption(depth_factor > 0 && depth_factor * depth_max_m <= 65535,
+                "noise", "depth_factor", "> 0 with depth_factor * depth_max_m <= 65535", depth_factor);
 }
 
 void ApplyRgbNoise(const SensorNoiseOptions& o, std::uint32_t seed, cv::Mat* bgr) {

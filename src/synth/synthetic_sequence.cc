@@ -26,19 +26,17 @@ Camera TumIntrinsics(const std::string& name, const std::string& key) {
 SyntheticSequenceOptions::SyntheticSequenceOptions() : camera(TumIntrinsics("fr3", "")) {}
 
 void SyntheticSequenceOptions::Check() const {
-  if (frames < 1) throw InputError("synth.frames must be >= 1, got " + std::to_string(frames));
-  if (!(fps > 0 && fps <= 60)) throw InputError("synth.fps must be in (0, 60], got " + std::to_string(fps));
+  RequireOption(frames >= 1, "synth", "frames", ">= 1", frames);
+  RequireOption(fps > 0 && fps <= 60, "synth", "fps", "in (0, 60]", fps);
   camera.Check("synth.camera");
   if (camera.HasDistortion())
     throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");
   if (camera.width < 16 || camera.height < 16)
     throw InputError("synth.camera: width and height must be >= 16");
-  if (motion_blur_samples < 3 || motion_blur_samples % 2 == 0)
-    throw InputError("synth.motion_blur_samples must be odd and >= 3, got " + std::to_string(motion_blur_samples));
-  if (!(exposure_s > 0 && exposure_s < 1.0 / fps))
-    throw InputError("synth.exposure_s must be in (0, 1/fps), got " + std::to_string(exposure_s));
-  if (!(start_stamp >= 0 && start_stamp < 1e10))
-    throw InputError("synth.start_stamp must be in [0, 1e10), got " + std::to_string(start_stamp));
+  RequireOption(motion_blur_samples >= 3 && motion_blur_samples % 2 == 1,
+                "synth", "motion_blur_samples", "odd and >= 3", motion_blur_samples);
+  RequireOption(exposure_s > 0 && exposure_s < 1.0 / fps, "synth", "exposure_s", "in (0, 1/fps)", exposure_s);
+  RequireOption(start_stamp >= 0 && start_stamp < 1e10, "synth", "start_stamp", "in [0, 1e10)", start_stamp);
   room.Check();
   noise.Check();
 }

@@ -45,34 +45,20 @@ void TrackerOptions::Check() const {
   map.Check();
   keyframes.Check();
   local_ba.Check();
-  if (min_matches < 4)
-    throw InputError("tracking.min_matches must be >= 4, got " + std::to_string(min_matches));
-  if (!(wide_search_factor >= 1.0))
-    throw InputError("tracking.wide_search_factor must be >= 1, got " +
-                     std::to_string(wide_search_factor));
-  if (max_new_points < 0)
-    throw InputError("tracking.max_new_points must be >= 0, got " + std::to_string(max_new_points));
-  if (!(max_ba_depth_rotation_deg_s >= 0.0))
-    throw InputError("tracking.max_ba_depth_rotation_deg_s must be >= 0, got " +
-                     std::to_string(max_ba_depth_rotation_deg_s));
-  if (!(readmit_masked_px >= 0.0))
-    throw InputError("tracking.readmit_masked_px must be >= 0, got " +
-                     std::to_string(readmit_masked_px));
-  if (!(readmit_rms_factor > 0.0))
-    throw InputError("tracking.readmit_rms_factor must be > 0, got " +
-                     std::to_string(readmit_rms_factor));
-  if (!(rematch_radius_px >= 0.0))
-    throw InputError("tracking.rematch_radius_px must be >= 0, got " +
-                     std::to_string(rematch_radius_px));
-  if (new_point_confirmations < 0)
-    throw InputError("tracking.new_point_confirmations must be >= 0, got " +
-                     std::to_string(new_point_confirmations));
-  if (!(new_point_max_shift_m >= 0.0))
-    throw InputError("tracking.new_point_max_shift_m must be >= 0, got " +
-                     std::to_string(new_point_max_shift_m));
-  if (lost_frames_before_reseed < 1)
-    throw InputError("tracking.lost_frames_before_reseed must be >= 1, got " +
-                     std::to_string(lost_frames_before_reseed));
+  RequireOption(min_matches >= 4, "tracking", "min_matches", ">= 4", min_matches);
+  RequireOption(wide_search_factor >= 1.0, "tracking", "wide_search_factor", ">= 1", wide_search_factor);
+  RequireOption(max_new_points >= 0, "tracking", "max_new_points", ">= 0", max_new_points);
+  RequireOption(max_ba_depth_rotation_deg_s >= 0.0,
+                "tracking", "max_ba_depth_rotation_deg_s", ">= 0", max_ba_depth_rotation_deg_s);
+  RequireOption(readmit_masked_px >= 0.0, "tracking", "readmit_masked_px", ">= 0", readmit_masked_px);
+  RequireOption(readmit_rms_factor > 0.0, "tracking", "readmit_rms_factor", "> 0", readmit_rms_factor);
+  RequireOption(rematch_radius_px >= 0.0, "tracking", "rematch_radius_px", ">= 0", rematch_radius_px);
+  RequireOption(new_point_confirmations >= 0,
+                "tracking", "new_point_confirmations", ">= 0", new_point_confirmations);
+  RequireOption(new_point_max_shift_m >= 0.0,
+                "tracking", "new_point_max_shift_m", ">= 0", new_point_max_shift_m);
+  RequireOption(lost_frames_before_reseed >= 1,
+                "tracking", "lost_frames_before_reseed", ">= 1", lost_frames_before_reseed);
 }
 
 FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)

@@ -102,7 +102,7 @@ TEST(TrackerOptions, CheckNamesTheKey) {
     options.Check();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "tracking.rematch_radius_px must be >= 0, got -1.000000");
+    EXPECT_STREQ(e.what(), "tracking.rematch_radius_px must be >= 0, got -1");
   }
 }
 
