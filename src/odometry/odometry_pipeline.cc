@@ -123,12 +123,19 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();
   if (NeedsTruthMask()) {
     const auto t = Clock::now();
-    if (config_.features.refill_from_background && !previous_gray_.empty()) {
-      // The background fill needs the camera's motion, which the detector would have given.
-      const PointTracks tracks = TrackCorners(previous_gray_, frame.gray, config_.klt, previous_mask);
-      const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, config_.homography);
-      has_current_from_previous = h.ok;
-      current_from_previous = h.current_from_previous;
+    if (config_.features.refill_from_background) {
+      // The background fill needs the camera's motion, which the detector would have given;
+      // each frame's pyramid is built once and kept for the next call, as the detector does.
+      const TrackingPyramid current_pyramid = BuildTrackingPyramid(frame.gray, config_.klt);
+      if (!previous_pyramid_.empty()) {
+        const PointTracks tracks = TrackPoints(
+            previous_pyramid_, current_pyramid, DetectCorners(previous_pyramid_, config_.klt, previous_mask),
+            config_.klt);
+        const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, config_.homography);
+        has_current_from_previous = h.ok;
+        current_from_previous = h.current_from_previous;
+      }
+      previous_pyramid_ = current_pyramid;
     }
     last_mask_ = truth_mask != 0;
     record.mask_ok = true;
