@@ -23,6 +23,11 @@ void OdometryConfig::Check() const {
     throw InputError("depth_change.enabled needs dynamic_mask.enabled (the baseline has no mask)");
   if (depth_change.enabled && dynamic_mask_source != MaskSource::kDifference)
     throw InputError("depth_change.enabled needs dynamic_mask.source \"difference\"");
+  map_occlusion.Check();
+  if (map_occlusion.enabled && !dynamic_mask_enabled)
+    throw InputError("map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
+  if (map_occlusion.enabled && dynamic_mask_source != MaskSource::kDifference)
+    throw InputError("map_occlusion.enabled needs dynamic_mask.source \"difference\"");
   features.Check();
   tracker.Check();
   run.Check();
@@ -141,6 +146,20 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("depth_change.open_px", &d->open_px, "side of the square opening that drops specks (0 = none)");
   r->Bind("depth_change.max_share", &d->max_share,
           "a depth-change mask over more of the image than this is dropped: the poses disagree, not the scene");
+  // map occlusion
+  MapOcclusionOptions* o = &c->map_occlusion;
+  r->Bind("map_occlusion.enabled", &o->enabled,
+          "add to the dynamic mask the pixels the last frame measured in front of every static map point "
+          "around them (what stands before the mapped background), carried into this frame by the homography");
+  r->Bind("map_occlusion.cell_px", &o->cell_px, "side of the grid cells map points are binned into (4-128)");
+  r->Bind("map_occlusion.neighbourhood_cells", &o->neighbourhood_cells,
+          "a pixel is compared with the map points of its cell and this many cells around it (0-4)");
+  r->Bind("map_occlusion.min_points", &o->min_points, "fewer map points around a pixel: no decision");
+  r->Bind("map_occlusion.relative_margin", &o->relative_margin,
+          "in front = nearer than (1 - this) x the nearest map point around, minus absolute_margin_m ([0, 1))");
+  r->Bind("map_occlusion.absolute_margin_m", &o->absolute_margin_m, "metres, see relative_margin");
+  r->Bind("map_occlusion.open_px", &o->open_px, "side of the square opening that drops specks (0 = none)");
+  r->Bind("map_occlusion.grow_px", &o->grow_px, "the mask is dilated by this on every side (0-64)");
   // features
   FeatureOptions* f = &c->features;
   r->Bind("features.num_features", &f->num_features, "ORB features per frame");

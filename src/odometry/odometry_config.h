@@ -9,6 +9,7 @@
 #include "dataset/tum_dataset.h"
 #include "dynamic_mask/depth_change.h"
 #include "dynamic_mask/dynamic_mask_options.h"
+#include "dynamic_mask/map_occlusion.h"
 #include "ego_motion/homography.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_options.h"
@@ -46,6 +47,7 @@ struct OdometryConfig {
   MaskSource dynamic_mask_source = MaskSource::kDifference;  // with dynamic_mask_enabled
   DynamicMaskOptions dynamic_mask;
   DepthChangeOptions depth_change;  // with dynamic_mask_enabled and the difference source
+  MapOcclusionOptions map_occlusion;  // likewise
   FeatureOptions features;
   TrackerOptions tracker;
   RunOptions run;

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
+#include "dynamic_mask/map_occlusion.h"
 #include "dynamic_mask/mask_morphology.h"
 #include "ego_motion/homography.h"
 #include "features/feature_filter.h"
@@ -214,6 +215,19 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     record.times.dynamic_mask_ms += MsSince(t);
   }
 
+  // 1c. Map occlusion (paper mode with the detector): what the last frame measured in front of
+  // the static map, carried into this frame by the detector's homography (one frame of lag).
+  if (config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous) {
+    const auto t = Clock::now();
+    cv::Mat h, carried;
+    cv::eigen2cv(current_from_previous, h);
+    cv::warpPerspective(occlusion_mask_, carried, h, occlusion_mask_.size(), cv::INTER_NEAREST);
+    last_mask_ = last_mask_.empty() ? carried : (last_mask_ | carried);
+    record.dynamic_ratio = DynamicRatio(last_mask_);
+    if (debug) debug->fused_mask = last_mask_;
+    record.times.dynamic_mask_ms += MsSince(t);
+  }
+
   // 3. Features minus the dynamic ones.
   auto t = Clock::now();
   FrameFeatures features;
@@ -277,6 +291,11 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.times.map_ms = tracking.map_ms;
   record.times.local_ba_ms = tracking.local_ba_ms;
 
+  if (config_.map_occlusion.enabled) {
+    t = Clock::now();
+    occlusion_mask_ = MapOcclusionOf(frame, tracking);
+    record.times.dynamic_mask_ms += MsSince(t);
+  }
   previous_gray_ = frame.gray;
   if (config_.depth_change.enabled) {
     if (frame.depth.empty() || tracking.state == TrackingState::kLost) {
@@ -288,6 +307,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   }
   record.times.processing_ms = MsSince(start);
   return record;
+}
+
+cv::Mat OdometryPipeline::MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking) {
+  if (frame.depth.empty() || tracking.state != TrackingState::kTracking) return cv::Mat();
+  // The points tracking trusts (unconfirmed ones may lie on what moves), in this camera's frame.
+  const Pose camera_from_world = tracking.world_from_camera.inverse();
+  std::vector<Eigen::Vector3d> points_in_camera;
+  for (const auto& [id, point] : tracker_.map().points())
+    if (point.unconfirmed_frames == 0) points_in_camera.push_back(camera_from_world * point.position_in_world);
+  return MapOcclusionMask(frame.depth, points_in_camera, camera_, config_.map_occlusion);
 }
 
 }  // namespace dynvo

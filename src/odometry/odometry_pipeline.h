@@ -87,6 +87,11 @@ class OdometryPipeline {
     Pose world_from_camera;   // as estimated
   };
   std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
+  cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
+
+  // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
+  // (empty when the frame has no depth or was not tracked).
+  cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking);
 };
 
 }  // namespace dynvo

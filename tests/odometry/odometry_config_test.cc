@@ -93,6 +93,21 @@ TEST(OdometryConfig, DepthChangeNeedsTheDetector) {
   EXPECT_THROW(LoadOdometryConfig("", {"depth_change.frames=11"}), InputError);
 }
 
+TEST(OdometryConfig, MapOcclusionNeedsTheDetector) {
+  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {"map_occlusion.enabled=true"}));
+  try {
+    LoadOdometryConfig(ConfigPath("baseline.json"), {"map_occlusion.enabled=true"});
+    ADD_FAILURE() << "the baseline has no mask to add to";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), ConfigPath("baseline.json") +
+                                          ": map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
+  }
+  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"),
+                                  {"map_occlusion.enabled=true", "dynamic_mask.source=ground_truth"}),
+               InputError);
+  EXPECT_THROW(LoadOdometryConfig("", {"map_occlusion.grow_px=65"}), InputError);
+}
+
 TEST(OdometryConfig, ReaderOptionsCarryTheDatasetKeysAndTheCamera) {
   const OdometryConfig c = LoadOdometryConfig("", {"camera.source=fr1", "dataset.depth_factor=1000"});
   const TumDatasetOptions options = c.ReaderOptions();

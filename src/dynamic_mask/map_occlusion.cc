@@ -1,0 +1,77 @@
+#include "dynamic_mask/map_occlusion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+void MapOcclusionOptions::Check() const {
+  const std::string section = "map_occlusion";
+  RequireOption(cell_px >= 4 && cell_px <= 128, section, "cell_px", "in [4, 128]", cell_px);
+  RequireOption(neighbourhood_cells >= 0 && neighbourhood_cells <= 4, section, "neighbourhood_cells", "in [0, 4]",
+                neighbourhood_cells);
+  RequireOption(min_points >= 1, section, "min_points", ">= 1", min_points);
+  RequireOption(std::isfinite(relative_margin) && relative_margin >= 0.0 && relative_margin < 1.0, section,
+                "relative_margin", "in [0, 1)", relative_margin);
+  RequireOption(std::isfinite(absolute_margin_m) && absolute_margin_m >= 0.0, section, "absolute_margin_m", ">= 0",
+                absolute_margin_m);
+  RequireOption(open_px >= 0 && open_px <= 31, section, "open_px", "in [0, 31]", open_px);
+  RequireOption(grow_px >= 0 && grow_px <= 64, section, "grow_px", "in [0, 64]", grow_px);
+}
+
+cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d>& points_in_camera,
+                         const Camera& camera, const MapOcclusionOptions& options) {
+  options.Check();
+  if (depth.empty() || depth.type() != CV_32FC1)
+    throw InputError("MapOcclusionMask: depth must be a non-empty CV_32FC1 image");
+  const int cell = options.cell_px;
+  const int grid_cols = (depth.cols + cell - 1) / cell, grid_rows = (depth.rows + cell - 1) / cell;
+  constexpr float kNone = std::numeric_limits<float>::max();
+  // The nearest map point and the number of map points per cell.
+  cv::Mat nearest(grid_rows, grid_cols, CV_32FC1, cv::Scalar(kNone));
+  cv::Mat count = cv::Mat::zeros(grid_rows, grid_cols, CV_32FC1);
+  for (const Eigen::Vector3d& p : points_in_camera) {
+    if (p.z() <= 0.0) continue;
+    const Eigen::Vector2d uv = camera.Project(p);
+    if (!(uv.x() >= 0.0 && uv.y() >= 0.0 && uv.x() < depth.cols && uv.y() < depth.rows)) continue;
+    const int gx = static_cast<int>(uv.x()) / cell, gy = static_cast<int>(uv.y()) / cell;
+    float& n = nearest.at<float>(gy, gx);
+    n = std::min(n, static_cast<float>(p.z()));
+    count.at<float>(gy, gx) += 1.0f;
+  }
+  // Over each cell's neighbourhood: the nearest point (minimum filter) and the number of points.
+  if (options.neighbourhood_cells > 0) {
+    const int side = 2 * options.neighbourhood_cells + 1;
+    cv::erode(nearest, nearest, cv::Mat::ones(side, side, CV_8UC1), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT,
+              cv::Scalar(kNone));
+    cv::boxFilter(count, count, -1, cv::Size(side, side), cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+  }
+  // The depth below which a pixel of each cell is in front (0 = no decision).
+  cv::Mat bar = cv::Mat::zeros(grid_rows, grid_cols, CV_32FC1);
+  for (int gy = 0; gy < grid_rows; ++gy)
+    for (int gx = 0; gx < grid_cols; ++gx)
+      if (count.at<float>(gy, gx) >= static_cast<float>(options.min_points))
+        bar.at<float>(gy, gx) = static_cast<float>(nearest.at<float>(gy, gx) * (1.0 - options.relative_margin) -
+                                                   options.absolute_margin_m);
+  cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);
+  for (int y = 0; y < depth.rows; ++y) {
+    const float* d = depth.ptr<float>(y);
+    const float* row_bar = bar.ptr<float>(y / cell);
+    uint8_t* m = mask.ptr<uint8_t>(y);
+    for (int x = 0; x < depth.cols; ++x)
+      if (d[x] > 0.0f && d[x] < row_bar[x / cell]) m[x] = 255;
+  }
+  if (options.open_px > 0)
+    cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat::ones(options.open_px, options.open_px, CV_8UC1));
+  if (options.grow_px > 0)
+    cv::dilate(mask, mask, cv::Mat::ones(2 * options.grow_px + 1, 2 * options.grow_px + 1, CV_8UC1));
+  return mask;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,78 @@
+// The masks added to the detector's, on generated sequences with ground-truth masks.
+// depth_change on a person walking toward the camera, the motion frame differencing hardly
+// sees: the depth-change mask finds much of the person, and next to nothing else. Measured when
+// written (dynvo-synth --scenario walking_toward --camera-path xyz --frames 60 --seed 1, then
+// dynvo-cli run with configs/paper.json): mask recall 0.000 without, 0.277 with --set
+// depth_change.enabled=true, precision 1.000 with.
+// map_occlusion on two people crossing a rotating camera's view, whose checked and flat
+// bodies frame differencing finds only the edges of: measured when written (dynvo-synth
+// --scenario two_crossing --camera-path rpy --frames 60 --seed 1), recall 0.18 without and 0.84
+// with --set map_occlusion.enabled=true, precision 0.71 and 0.72.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "dataset/text_lines.h"
+#include "odometry/sequence_runner.h"
+#include "support/temp_dir.h"
+#include "synth/synthetic_sequence.h"
+#include "synth/tum_writer.h"
+
+namespace dynvo {
+namespace {
+
+nlohmann::json MaskQuality(const std::string& sequence, const std::string& out,
+                           const std::vector<std::string>& overrides) {
+  RunRequest request;
+  request.dataset = sequence;
+  request.config_path = std::string(DYNVO_SOURCE_DIR) + "/configs/paper.json";
+  request.overrides = overrides;
+  request.out_dir = out;
+  request.quiet = true;
+  RunOdometry(request);
+  return nlohmann::json::parse(ReadTextFile(out + "/run.json"))["mask_quality"];
+}
+
+// Writes a 60-frame generated sequence (scene seed 1) into `folder`.
+std::string WriteSequence(const std::string& folder, Scenario scenario, CameraPathPreset path) {
+  SyntheticSequenceOptions options;
+  options.scenario = scenario;
+  options.camera_path = path;
+  options.frames = 60;
+  options.seed = 1;
+  PrepareOutputFolder(folder, /*force=*/false);
+  WriteSyntheticSequence(options, folder);
+  return folder;
+}
+
+TEST(DepthChangeEndToEnd, FindsThePersonWalkingTowardTheCamera) {
+  test::TempDir dir;
+  const std::string sequence =
+      WriteSequence((dir.path() / "sequence").string(), Scenario::kWalkingToward, CameraPathPreset::kXyz);
+
+  const nlohmann::json without = MaskQuality(sequence, (dir.path() / "paper").string(), {});
+  const nlohmann::json with =
+      MaskQuality(sequence, (dir.path() / "depth").string(), {"depth_change.enabled=true"});
+  EXPECT_LT(without["recall"].get<double>(), 0.05);
+  EXPECT_GT(with["recall"].get<double>(), 0.15);
+  EXPECT_GT(with["precision"].get<double>(), 0.9);
+}
+
+TEST(MapOcclusionEndToEnd, CoversMostOfTwoPeopleCrossingARotatingView) {
+  test::TempDir dir;
+  const std::string sequence =
+      WriteSequence((dir.path() / "sequence").string(), Scenario::kTwoCrossing, CameraPathPreset::kRpy);
+  const nlohmann::json without = MaskQuality(sequence, (dir.path() / "paper").string(), {});
+  const nlohmann::json with =
+      MaskQuality(sequence, (dir.path() / "occlusion").string(), {"map_occlusion.enabled=true"});
+  EXPECT_LT(without["recall"].get<double>(), 0.3);
+  EXPECT_GT(with["recall"].get<double>(), 0.7);
+  // What it adds is mostly people: the mask is no less precise than the detector's alone.
+  EXPECT_GT(with["precision"].get<double>(), without["precision"].get<double>() - 0.05);
+}
+
+}  // namespace
+}  // namespace dynvo
