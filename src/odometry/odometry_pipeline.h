@@ -69,6 +69,10 @@ class OdometryPipeline {
   const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
+  // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
+  // (empty when the frame has no depth or was not tracked).
+  cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking);
+
   Camera camera_;
   OdometryConfig config_;
   ImageArea image_area_;
@@ -88,10 +92,6 @@ class OdometryPipeline {
   };
   std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
-
-  // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
-  // (empty when the frame has no depth or was not tracked).
-  cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking);
 };
 
 }  // namespace dynvo
