@@ -6,7 +6,8 @@
 # is at the target's edge; a pair above it at every budget misses it for a reason the method
 # owns. The sequences are generated as scene_seeds.sh does (make_sequences.sh keeps them when
 # they are already there).
-# Writes bench/results/NAME.md (Markdown) and NAME.csv; prints the table.
+# Writes bench/results/NAME.md (Markdown) and NAME.csv, prints the table, and refreshes
+# bench/results/ratio_summary.md (bench/ratio_summary.sh).
 #   bash bench/ratio_spread.sh    (env: DYNVO_BUILD_DIR, FRAMES=300, SCENE_SEEDS="1 2 3",
 #   BUDGETS="990 1000 1010", CONFIG=paper; SET="key=value ..." overrides config keys in every
 #   run; NAME=ratio_spread, the results' file name, so that runs with overrides keep their own)
@@ -103,3 +104,4 @@ print("\nPer budget, pairs within 1.3x: %s. Within at every budget: %d of %d pai
           always, len(pairs), never, sum(m <= 1.3 for m in medians)))
 PY
 cat "$results/$results_name.md"
+bash "$root/bench/ratio_summary.sh" >/dev/null  # the overview of every run kept
