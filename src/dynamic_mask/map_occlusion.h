@@ -24,6 +24,8 @@ struct MapOcclusionOptions {
   double absolute_margin_m = 0.05; // those map points minus this (relative in [0, 1), metres >= 0)
   int open_px = 5;                 // side of the square opening that drops specks (0 = none, <= 31)
   int grow_px = 8;                 // the mask is dilated by this on every side (0-64)
+  bool seeded = false;             // the pipeline keeps only the regions that touch the detector's mask
+                                   // or a region it kept the frame before (OdometryPipeline, step 1c)
 
   // Throws InputError naming the key "map_occlusion.<field>" when a field is out of range.
   void Check() const;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "core/error.h"
 
 namespace dynvo {
@@ -19,6 +21,31 @@ std::vector<uint8_t> StaticPointFlags(const cv::Mat& mask, const std::vector<cv:
   std::vector<uint8_t> flags(points.size(), 1);
   for (size_t i = 0; i < points.size(); ++i) flags[i] = InMaskRegion(mask, points[i]) ? 0 : 1;
   return flags;
+}
+
+cv::Mat RegionsTouching(const cv::Mat& regions, const cv::Mat& seeds) {
+  if (regions.type() != CV_8UC1) throw InputError("RegionsTouching needs a CV_8UC1 regions mask");
+  cv::Mat kept = cv::Mat::zeros(regions.size(), CV_8UC1);
+  if (seeds.empty() || regions.empty()) return kept;
+  if (seeds.type() != CV_8UC1 || seeds.size() != regions.size())
+    throw InputError("RegionsTouching needs CV_8UC1 seeds of the regions' size");
+  cv::Mat labels;
+  const int count = cv::connectedComponents(regions, labels, 8, CV_32S);
+  std::vector<uint8_t> touched(static_cast<size_t>(count), 0);
+  for (int y = 0; y < regions.rows; ++y) {
+    const uint8_t* region = regions.ptr<uint8_t>(y);
+    const uint8_t* seed = seeds.ptr<uint8_t>(y);
+    const int* label = labels.ptr<int>(y);
+    for (int x = 0; x < regions.cols; ++x)
+      if (region[x] && seed[x]) touched[static_cast<size_t>(label[x])] = 1;
+  }
+  for (int y = 0; y < regions.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    uint8_t* out = kept.ptr<uint8_t>(y);
+    for (int x = 0; x < regions.cols; ++x)
+      if (label[x] > 0 && touched[static_cast<size_t>(label[x])]) out[x] = 255;
+  }
+  return kept;
 }
 
 }  // namespace dynvo

@@ -17,4 +17,9 @@ bool InMaskRegion(const cv::Mat& mask, const cv::Point2f& point);
 // An empty mask keeps every point.
 std::vector<uint8_t> StaticPointFlags(const cv::Mat& mask, const std::vector<cv::Point2f>& points);
 
+// The connected regions (8-connected non-zero pixels) of `regions` that share at least one pixel
+// with a non-zero pixel of `seeds`, as a CV_8UC1 mask (255 = kept); the others are dropped. Both
+// CV_8UC1 of one size; an empty `seeds` keeps nothing. Throws InputError otherwise.
+cv::Mat RegionsTouching(const cv::Mat& regions, const cv::Mat& seeds);
+
 }  // namespace dynvo

@@ -160,6 +160,8 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("map_occlusion.absolute_margin_m", &o->absolute_margin_m, "metres, see relative_margin");
   r->Bind("map_occlusion.open_px", &o->open_px, "side of the square opening that drops specks (0 = none)");
   r->Bind("map_occlusion.grow_px", &o->grow_px, "the mask is dilated by this on every side (0-64)");
+  r->Bind("map_occlusion.seeded", &o->seeded,
+          "keep only its regions that touch the detector's mask or a region kept the frame before");
   // features
   FeatureOptions* f = &c->features;
   r->Bind("features.num_features", &f->num_features, "ORB features per frame");

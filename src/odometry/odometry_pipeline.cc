@@ -13,6 +13,7 @@
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "dynamic_mask/map_occlusion.h"
 #include "dynamic_mask/mask_morphology.h"
+#include "dynamic_mask/mask_regions.h"
 #include "ego_motion/homography.h"
 #include "features/feature_filter.h"
 
@@ -217,15 +218,28 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
 
   // 1c. Map occlusion (paper mode with the detector): what the last frame measured in front of
   // the static map, carried into this frame by the detector's homography (one frame of lag).
+  // Seeded, only its regions that touch the mask so far or a region kept the frame before.
   if (config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous) {
     const auto t = Clock::now();
     cv::Mat h, carried;
     cv::eigen2cv(current_from_previous, h);
     cv::warpPerspective(occlusion_mask_, carried, h, occlusion_mask_.size(), cv::INTER_NEAREST);
+    if (config_.map_occlusion.seeded) {
+      cv::Mat seeds = last_mask_.empty() ? cv::Mat::zeros(carried.size(), CV_8UC1) : last_mask_.clone();
+      if (!kept_occlusion_.empty()) {
+        cv::Mat kept_before;
+        cv::warpPerspective(kept_occlusion_, kept_before, h, kept_occlusion_.size(), cv::INTER_NEAREST);
+        seeds |= kept_before;
+      }
+      carried = RegionsTouching(carried, seeds);
+      kept_occlusion_ = carried.clone();
+    }
     last_mask_ = last_mask_.empty() ? carried : (last_mask_ | carried);
     record.dynamic_ratio = DynamicRatio(last_mask_);
     if (debug) debug->fused_mask = last_mask_;
     record.times.dynamic_mask_ms += MsSince(t);
+  } else {
+    kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
 
   // 3. Features minus the dynamic ones.

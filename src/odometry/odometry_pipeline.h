@@ -92,6 +92,7 @@ class OdometryPipeline {
   };
   std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
+  cv::Mat kept_occlusion_;  // map_occlusion.seeded: the regions of it frame t-1 kept (seeds for frame t)
 };
 
 }  // namespace dynvo

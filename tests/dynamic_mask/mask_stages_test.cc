@@ -270,5 +270,25 @@ TEST(MaskRegions, PointsOnNonZeroPixelsAreInside) {
   EXPECT_EQ(flags, (std::vector<uint8_t>{0, 1}));
 }
 
+TEST(MaskRegions, RegionsTouchingKeepsWholeRegionsASeedTouches) {
+  cv::Mat regions = cv::Mat::zeros(60, 60, CV_8UC1);
+  regions(cv::Rect(5, 5, 10, 10)).setTo(255);    // touched by a seed in its corner
+  regions(cv::Rect(30, 5, 10, 10)).setTo(255);   // no seed
+  regions(cv::Rect(20, 30, 10, 10)).setTo(255);  // joined diagonally to the next: one 8-connected region
+  regions(cv::Rect(30, 40, 10, 10)).setTo(255);
+  cv::Mat seeds = cv::Mat::zeros(60, 60, CV_8UC1);
+  seeds.at<uint8_t>(14, 14) = 255;
+  seeds.at<uint8_t>(49, 39) = 255;  // last pixel of the diagonal pair's second square
+  seeds(cv::Rect(50, 50, 5, 5)).setTo(255);  // on no region: adds nothing
+  const cv::Mat kept = RegionsTouching(regions, seeds);
+  EXPECT_EQ(cv::countNonZero(kept), 300);
+  EXPECT_EQ(cv::countNonZero(kept(cv::Rect(5, 5, 10, 10))), 100);
+  EXPECT_EQ(cv::countNonZero(kept(cv::Rect(30, 5, 10, 10))), 0);
+  EXPECT_EQ(cv::countNonZero(kept(cv::Rect(20, 30, 10, 10))), 100);
+  EXPECT_EQ(cv::countNonZero(RegionsTouching(regions, cv::Mat())), 0);
+  EXPECT_THROW(RegionsTouching(regions, cv::Mat::zeros(30, 30, CV_8UC1)), InputError);
+  EXPECT_THROW(RegionsTouching(cv::Mat::zeros(60, 60, CV_32FC1), seeds), InputError);
+}
+
 }  // namespace
 }  // namespace dynvo
