@@ -5,7 +5,6 @@
 #include <string>
 #include <utility>
 
-#include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -14,6 +13,7 @@
 #include "dynamic_mask/map_occlusion.h"
 #include "dynamic_mask/mask_morphology.h"
 #include "dynamic_mask/mask_regions.h"
+#include "dynamic_mask/motion_compensation.h"
 #include "ego_motion/homography.h"
 #include "features/feature_filter.h"
 
@@ -24,6 +24,14 @@ using Clock = std::chrono::steady_clock;
 
 double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// A binary mask of frame t-1 carried into frame t by the ego-motion homography (nearest
+// neighbour, 0 where it has no source).
+cv::Mat CarriedIntoFrame(const cv::Mat& mask, const Eigen::Matrix3d& current_from_previous) {
+  cv::Mat carried;
+  WarpBinaryMask(mask, current_from_previous, mask.size(), &carried);
+  return carried;
 }
 
 // True when both headers view the same pixels (one decoded frame handed to two calls).
@@ -204,9 +212,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     const cv::Mat changed_last =
         DepthChangeMask(last.depth, earlier.depth, camera_,
                         earlier.world_from_camera.inverse() * last.world_from_camera, config_.depth_change);
-    cv::Mat h, changed;
-    cv::eigen2cv(current_from_previous, h);
-    cv::warpPerspective(changed_last, changed, h, changed_last.size(), cv::INTER_NEAREST);
+    const cv::Mat changed = CarriedIntoFrame(changed_last, current_from_previous);
     // A change over much of the image means the poses disagree, not the scene: no mask then.
     if (DynamicRatio(changed) <= config_.depth_change.max_share) {
       last_mask_ = last_mask_.empty() ? changed : (last_mask_ | changed);
@@ -221,18 +227,15 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // Seeded, only its regions that touch the mask so far or a region kept the frame before.
   if (config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous) {
     const auto t = Clock::now();
-    cv::Mat h, carried;
-    cv::eigen2cv(current_from_previous, h);
-    cv::warpPerspective(occlusion_mask_, carried, h, occlusion_mask_.size(), cv::INTER_NEAREST);
+    cv::Mat carried = CarriedIntoFrame(occlusion_mask_, current_from_previous);
     if (config_.map_occlusion.seeded) {
-      cv::Mat seeds = last_mask_.empty() ? cv::Mat::zeros(carried.size(), CV_8UC1) : last_mask_.clone();
+      cv::Mat seeds = last_mask_;
       if (!kept_occlusion_.empty()) {
-        cv::Mat kept_before;
-        cv::warpPerspective(kept_occlusion_, kept_before, h, kept_occlusion_.size(), cv::INTER_NEAREST);
-        seeds |= kept_before;
+        const cv::Mat kept_before = CarriedIntoFrame(kept_occlusion_, current_from_previous);
+        seeds = seeds.empty() ? kept_before : (seeds | kept_before);
       }
-      carried = RegionsTouching(carried, seeds);
-      kept_occlusion_ = carried.clone();
+      carried = RegionsTouching(carried, seeds);  // no seeds: nothing kept
+      kept_occlusion_ = carried;
     }
     last_mask_ = last_mask_.empty() ? carried : (last_mask_ | carried);
     record.dynamic_ratio = DynamicRatio(last_mask_);
