@@ -19,6 +19,8 @@ struct DepthChangeOptions {
   double threshold = 0.02;  // relative depth change that marks a pixel (0-1, exclusive of 0)
   int open_px = 5;          // side of the square opening that drops specks (0 = none, <= 31)
   double max_share = 0.25;  // a mask over more of the image is dropped (the poses disagree) (0-1]
+  bool seeds_only = false;  // the mask only seeds the seeded map occlusion (which of its regions
+                            // join the mask) and does not join the mask itself (OdometryPipeline)
 
   // Throws InputError naming the key "depth_change.<field>" when a field is out of range.
   void Check() const;

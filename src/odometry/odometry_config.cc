@@ -23,6 +23,10 @@ void OdometryConfig::Check() const {
     throw InputError("depth_change.enabled needs dynamic_mask.enabled (the baseline has no mask)");
   if (depth_change.enabled && dynamic_mask_source != MaskSource::kDifference)
     throw InputError("depth_change.enabled needs dynamic_mask.source \"difference\"");
+  if (depth_change.seeds_only && !(depth_change.enabled && map_occlusion.enabled && map_occlusion.seeded))
+    throw InputError(
+        "depth_change.seeds_only needs depth_change.enabled, map_occlusion.enabled and map_occlusion.seeded "
+        "(it only seeds the seeded map occlusion)");
   map_occlusion.Check();
   if (map_occlusion.enabled && !dynamic_mask_enabled)
     throw InputError("map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
@@ -146,6 +150,9 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("depth_change.open_px", &d->open_px, "side of the square opening that drops specks (0 = none)");
   r->Bind("depth_change.max_share", &d->max_share,
           "a depth-change mask over more of the image than this is dropped: the poses disagree, not the scene");
+  r->Bind("depth_change.seeds_only", &d->seeds_only,
+          "the depth-change mask does not join the dynamic mask; it only seeds the seeded map occlusion "
+          "(map_occlusion.seeded): the occlusion regions it touches join");
   // map occlusion
   MapOcclusionOptions* o = &c->map_occlusion;
   r->Bind("map_occlusion.enabled", &o->enabled,
@@ -161,7 +168,8 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("map_occlusion.open_px", &o->open_px, "side of the square opening that drops specks (0 = none)");
   r->Bind("map_occlusion.grow_px", &o->grow_px, "the mask is dilated by this on every side (0-64)");
   r->Bind("map_occlusion.seeded", &o->seeded,
-          "keep only its regions that touch the detector's mask or a region kept the frame before");
+          "keep only its regions that touch the detector's mask (with depth_change.seeds_only, or the "
+          "depth-change mask) or a region kept the frame before");
   // features
   FeatureOptions* f = &c->features;
   r->Bind("features.num_features", &f->num_features, "ORB features per frame");

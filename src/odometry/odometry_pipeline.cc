@@ -203,7 +203,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
   // between the last frame and the one `frames` before it, whose poses are both estimated
   // already, and carried into this frame by the detector's homography (one frame of lag).
+  // With depth_change.seeds_only it does not join the mask; it only seeds step 1c.
   const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
+  cv::Mat change_seeds;
   if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
       past_depths_.size() >= span) {
     const auto t = Clock::now();
@@ -215,21 +217,27 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     const cv::Mat changed = CarriedIntoFrame(changed_last, current_from_previous);
     // A change over much of the image means the poses disagree, not the scene: no mask then.
     if (DynamicRatio(changed) <= config_.depth_change.max_share) {
-      last_mask_ = last_mask_.empty() ? changed : (last_mask_ | changed);
-      record.dynamic_ratio = DynamicRatio(last_mask_);
-      if (debug) debug->fused_mask = last_mask_;
+      if (config_.depth_change.seeds_only) {
+        change_seeds = changed;
+      } else {
+        last_mask_ = last_mask_.empty() ? changed : (last_mask_ | changed);
+        record.dynamic_ratio = DynamicRatio(last_mask_);
+        if (debug) debug->fused_mask = last_mask_;
+      }
     }
     record.times.dynamic_mask_ms += MsSince(t);
   }
 
   // 1c. Map occlusion (paper mode with the detector): what the last frame measured in front of
   // the static map, carried into this frame by the detector's homography (one frame of lag).
-  // Seeded, only its regions that touch the mask so far or a region kept the frame before.
+  // Seeded, only its regions that touch the mask so far, the depth-change seeds or a region kept
+  // the frame before.
   if (config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous) {
     const auto t = Clock::now();
     cv::Mat carried = CarriedIntoFrame(occlusion_mask_, current_from_previous);
     if (config_.map_occlusion.seeded) {
       cv::Mat seeds = last_mask_;
+      if (!change_seeds.empty()) seeds = seeds.empty() ? change_seeds : (seeds | change_seeds);
       if (!kept_occlusion_.empty()) {
         const cv::Mat kept_before = CarriedIntoFrame(kept_occlusion_, current_from_previous);
         seeds = seeds.empty() ? kept_before : (seeds | kept_before);

@@ -10,6 +10,11 @@
 // with --set map_occlusion.enabled=true, precision 0.71 and 0.72. Seeded (--set
 // map_occlusion.seeded=true) recall 0.82 and precision 0.79; on the same camera path without
 // people the map occlusion took 877 features, seeded none.
+// The depth-change mask as the seeds of the seeded map occlusion (depth_change.seeds_only) on
+// the person walking toward the camera (60 frames, seed 1): seeded alone recall 0.000 (the
+// detector marks nothing there, so nothing seeds), with the depth-change seeds 0.430 at
+// precision 0.79, against depth change joining the mask alone (the first test) 0.277; on the
+// same camera path without people, 0 features removed.
 
 #include <string>
 #include <vector>
@@ -99,6 +104,29 @@ TEST(MapOcclusionEndToEnd, SeededMarksNothingWhereNothingMoves) {
   EXPECT_GT(removed("occlusion", {"map_occlusion.enabled=true"}), 100);
   // Seeded, nothing: the detector's mask, the seeds, is empty where nothing moves.
   EXPECT_EQ(removed("seeded", {"map_occlusion.enabled=true", "map_occlusion.seeded=true"}), 0);
+}
+
+TEST(MapOcclusionEndToEnd, DepthChangeSeedsFindThePersonTheDetectorMisses) {
+  test::TempDir dir;
+  const std::string toward =
+      WriteSequence((dir.path() / "toward").string(), Scenario::kWalkingToward, CameraPathPreset::kXyz);
+  const std::vector<std::string> seeded = {"map_occlusion.enabled=true", "map_occlusion.seeded=true"};
+  std::vector<std::string> change_seeds = seeded;
+  change_seeds.insert(change_seeds.end(), {"depth_change.enabled=true", "depth_change.seeds_only=true"});
+
+  // The detector sees next to nothing of a person walking toward the camera: no seeds.
+  EXPECT_LT(MaskQuality(toward, (dir.path() / "seeded").string(), seeded)["recall"].get<double>(), 0.05);
+  // Its depth changes: the occlusion regions that change touches join, the whole person, more
+  // than the changed pixels alone would give (0.277 when written, the first test).
+  const nlohmann::json with = MaskQuality(toward, (dir.path() / "change_seeds").string(), change_seeds);
+  EXPECT_GT(with["recall"].get<double>(), 0.35);
+  EXPECT_GT(with["precision"].get<double>(), 0.7);
+
+  // Where nothing moves, the depth does not change either: nothing seeds, nothing is removed.
+  const std::string still =
+      WriteSequence((dir.path() / "still").string(), Scenario::kNone, CameraPathPreset::kXyz);
+  const nlohmann::json still_report = RunReport(still, (dir.path() / "still_out").string(), change_seeds);
+  EXPECT_EQ(still_report["counts"]["features_removed"].get<int>(), 0);
 }
 
 }  // namespace

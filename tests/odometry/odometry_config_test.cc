@@ -1,5 +1,8 @@
 #include "odometry/odometry_config.h"
 
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -106,6 +109,27 @@ TEST(OdometryConfig, MapOcclusionNeedsTheDetector) {
                                   {"map_occlusion.enabled=true", "dynamic_mask.source=ground_truth"}),
                InputError);
   EXPECT_THROW(LoadOdometryConfig("", {"map_occlusion.grow_px=65"}), InputError);
+}
+
+TEST(OdometryConfig, DepthChangeSeedsNeedTheSeededMapOcclusion) {
+  const std::vector<std::string> seeded = {"map_occlusion.enabled=true", "map_occlusion.seeded=true"};
+  const std::vector<std::string> change_seeds = {"depth_change.enabled=true", "depth_change.seeds_only=true"};
+  std::vector<std::string> both = seeded;
+  both.insert(both.end(), change_seeds.begin(), change_seeds.end());
+  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), both));
+  try {
+    LoadOdometryConfig(ConfigPath("paper.json"), change_seeds);
+    ADD_FAILURE() << "without the seeded map occlusion there is nothing to seed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              ConfigPath("paper.json") +
+                  ": depth_change.seeds_only needs depth_change.enabled, map_occlusion.enabled and "
+                  "map_occlusion.seeded (it only seeds the seeded map occlusion)");
+  }
+  // The depth change itself off: no seeds to give.
+  std::vector<std::string> without_change = seeded;
+  without_change.push_back("depth_change.seeds_only=true");
+  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"), without_change), InputError);
 }
 
 TEST(OdometryConfig, ReaderOptionsCarryTheDatasetKeysAndTheCamera) {
