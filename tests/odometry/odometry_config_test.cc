@@ -50,6 +50,16 @@ TEST(OdometryConfig, BaselineDiffersOnlyByTheDynamicHandling) {
   EXPECT_EQ(paper, baseline) << nlohmann::json::diff(paper, baseline).dump(1);
 }
 
+TEST(OdometryConfig, OcclusionIsPaperWithTheMaskAdditions) {
+  const nlohmann::json occlusion = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("occlusion.json"), {}));
+  const nlohmann::json paper_with_additions = OdometryConfigToJson(LoadOdometryConfig(
+      ConfigPath("paper.json"),
+      {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
+       "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
+       "features.refill_from_background=true", "features.parallel_levels=true"}));
+  EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
+}
+
 TEST(OdometryConfig, ErrorsNameFileAndKey) {
   test::TempDir dir;
   const std::string bad_key = dir.Write("bad_key.json", R"({"dynamic_mask": {"erode_iterationz": 2}})");
