@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Accuracy targets of the odometry (issue 4): per-second RPE of the paper, tuned
-# (configs/tuned.json) and baseline configs, and of the paper config without its three additions
+# (configs/tuned.json), occlusion (configs/occlusion.json) and baseline configs, and of the paper config without its three additions
 # (`--set dynamic_mask.min_otsu_threshold=0 --set tracking.readmit_masked_px=0
 # --set tracking.new_point_confirmations=0`, "paper, strict": Otsu alone, masked features never
 # readmitted, new map points trusted at once: the paper's literal method), on
@@ -66,7 +66,7 @@ PY
 csv="$results/accuracy.csv"
 otsu_list="$work/otsu_runs.txt"  # "name<TAB>timing.csv of the strict run", one a line
 : > "$otsu_list"
-echo "sequence,kind,twin,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,twin_paper_rpe,twin_paper_strict_rpe,twin_tuned_rpe,paper_mask_iou,tuned_mask_iou,paper_ms,baseline_ms" > "$csv"
+echo "sequence,kind,twin,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,twin_paper_rpe,twin_paper_strict_rpe,twin_tuned_rpe,paper_mask_iou,tuned_mask_iou,paper_ms,baseline_ms,occlusion_rpe,twin_occlusion_rpe,occlusion_mask_iou" > "$csv"
 row() {  # name kind seq twin_seq_or_empty
   local name="$1" kind="$2" seq="$3" twin="$4"
   read -r p_rpe p_iou p_ms _ < <(run "$seq" paper)
@@ -74,13 +74,15 @@ row() {  # name kind seq twin_seq_or_empty
   printf '%s\t%s\n' "$name" "$(run_dir "$seq" paper "${strict[@]}")/timing.csv" >> "$otsu_list"
   read -r u_rpe u_iou _ _ < <(run "$seq" tuned)
   read -r b_rpe _ b_ms _ < <(run "$seq" baseline)
-  local t_rpe="" ts_rpe="" tu_rpe=""
+  read -r o_rpe o_iou _ _ < <(run "$seq" occlusion)
+  local t_rpe="" ts_rpe="" tu_rpe="" to_rpe=""
   [ -n "$twin" ] && read -r t_rpe _ _ _ < <(run "$twin" paper)
   [ -n "$twin" ] && read -r ts_rpe _ _ _ < <(run "$twin" paper "${strict[@]}")
   [ -n "$twin" ] && printf '%s\t%s\n' "$(basename "$twin")" \
     "$(run_dir "$twin" paper "${strict[@]}")/timing.csv" >> "$otsu_list"
   [ -n "$twin" ] && read -r tu_rpe _ _ _ < <(run "$twin" tuned)
-  echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$s_rpe,$u_rpe,$b_rpe,$t_rpe,$ts_rpe,$tu_rpe,$p_iou,$u_iou,$p_ms,$b_ms" >> "$csv"
+  [ -n "$twin" ] && read -r to_rpe _ _ _ < <(run "$twin" occlusion)
+  echo "$name,$kind,$(basename "${twin:-none}"),$p_rpe,$s_rpe,$u_rpe,$b_rpe,$t_rpe,$ts_rpe,$tu_rpe,$p_iou,$u_iou,$p_ms,$b_ms,$o_rpe,$to_rpe,$o_iou" >> "$csv"
   echo "accuracy: $name done" >&2
 }
 
@@ -110,16 +112,17 @@ cat "$results/otsu_thresholds.md"
 
 # The real sequences again, over RANSAC seeds.
 seeds_csv="$results/accuracy_seeds.csv"
-echo "sequence,seed,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,paper_frame_rpe,paper_strict_frame_rpe,tuned_frame_rpe,baseline_frame_rpe" > "$seeds_csv"
+echo "sequence,seed,paper_rpe,paper_strict_rpe,tuned_rpe,baseline_rpe,paper_frame_rpe,paper_strict_frame_rpe,tuned_frame_rpe,baseline_frame_rpe,occlusion_rpe,occlusion_frame_rpe" > "$seeds_csv"
 seeds_rows() {  # name seq
-  local name="$1" seq="$2" s p st u b pf sf uf bf
+  local name="$1" seq="$2" s p st u b o pf sf uf bf of
   for s in $(seq 1 "$seeds"); do
     local overrides=(--set "ego_motion.seed=$s" --set "pose.seed=$s")
     read -r p _ _ pf < <(run "$seq" paper "${overrides[@]}")
     read -r st _ _ sf < <(run "$seq" paper "${overrides[@]}" "${strict[@]}")
     read -r u _ _ uf < <(run "$seq" tuned "${overrides[@]}")
     read -r b _ _ bf < <(run "$seq" baseline "${overrides[@]}")
-    echo "$name,$s,$p,$st,$u,$b,$pf,$sf,$uf,$bf" >> "$seeds_csv"
+    read -r o _ _ of < <(run "$seq" occlusion "${overrides[@]}")
+    echo "$name,$s,$p,$st,$u,$b,$pf,$sf,$uf,$bf,$o,$of" >> "$seeds_csv"
   done
   echo "accuracy: $name over $seeds seeds done" >&2
 }
