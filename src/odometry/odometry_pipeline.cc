@@ -34,6 +34,13 @@ cv::Mat CarriedIntoFrame(const cv::Mat& mask, const Eigen::Matrix3d& current_fro
   return carried;
 }
 
+// The union of two binary masks of one size; an empty one adds nothing.
+cv::Mat Union(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return a | b;
+}
+
 // True when both headers view the same pixels (one decoded frame handed to two calls).
 bool SameImage(const cv::Mat& a, const cv::Mat& b) {
   return !a.empty() && a.data == b.data && a.size() == b.size() && a.step == b.step && a.type() == b.type();
@@ -203,11 +210,12 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
   // between the last frame and the one `frames` before it, whose poses are both estimated
   // already, and carried into this frame by the detector's homography (one frame of lag).
-  // With depth_change.seeds_only it does not join the mask; it only seeds step 1c.
+  // With depth_change.seeds_only it does not join the mask; it only seeds step 1c (and is not
+  // computed when there is no occlusion mask to seed).
   const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
   cv::Mat change_seeds;
   if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
-      past_depths_.size() >= span) {
+      past_depths_.size() >= span && (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
     const auto t = Clock::now();
     const PastDepth& last = past_depths_.back();
     const PastDepth& earlier = past_depths_[past_depths_.size() - span];
@@ -220,7 +228,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
       if (config_.depth_change.seeds_only) {
         change_seeds = changed;
       } else {
-        last_mask_ = last_mask_.empty() ? changed : (last_mask_ | changed);
+        last_mask_ = Union(last_mask_, changed);
         record.dynamic_ratio = DynamicRatio(last_mask_);
         if (debug) debug->fused_mask = last_mask_;
       }
@@ -236,16 +244,12 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     const auto t = Clock::now();
     cv::Mat carried = CarriedIntoFrame(occlusion_mask_, current_from_previous);
     if (config_.map_occlusion.seeded) {
-      cv::Mat seeds = last_mask_;
-      if (!change_seeds.empty()) seeds = seeds.empty() ? change_seeds : (seeds | change_seeds);
-      if (!kept_occlusion_.empty()) {
-        const cv::Mat kept_before = CarriedIntoFrame(kept_occlusion_, current_from_previous);
-        seeds = seeds.empty() ? kept_before : (seeds | kept_before);
-      }
+      cv::Mat seeds = Union(last_mask_, change_seeds);
+      if (!kept_occlusion_.empty()) seeds = Union(seeds, CarriedIntoFrame(kept_occlusion_, current_from_previous));
       carried = RegionsTouching(carried, seeds);  // no seeds: nothing kept
       kept_occlusion_ = carried;
     }
-    last_mask_ = last_mask_.empty() ? carried : (last_mask_ | carried);
+    last_mask_ = Union(last_mask_, carried);
     record.dynamic_ratio = DynamicRatio(last_mask_);
     if (debug) debug->fused_mask = last_mask_;
     record.times.dynamic_mask_ms += MsSince(t);
