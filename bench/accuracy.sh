@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Accuracy targets of the odometry (issue 4): per-second RPE of the paper, tuned
 # (configs/tuned.json), occlusion (configs/occlusion.json) and baseline configs, and of the
-# paper config without its three additions (`--set dynamic_mask.min_otsu_threshold=0 --set tracking.readmit_masked_px=0
-# --set tracking.new_point_confirmations=0`, "paper, strict": Otsu alone, masked features never
-# readmitted, new map points trusted at once: the paper's literal method), on
+# paper config without its three additions (`--set dynamic_mask.min_otsu_threshold=0 --set
+# tracking.readmit_masked_px=0 --set tracking.new_point_confirmations=0`, "paper, strict": Otsu
+# alone, masked features never readmitted, new map points trusted at once: the paper's literal
+# method), on
 #  - generated dynamic sequences, each against its twin without people (same camera path):
 #    synthetic scenes, and people inserted into the real fr1_rpy_head150 (when ../shared exists);
 #  - the real static sequences in ../shared/data/tum (paper vs baseline).
