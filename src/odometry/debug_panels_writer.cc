@@ -70,7 +70,12 @@ void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat&
     tiles.push_back(tile);
   }
   WriteFeatureList(dir + prefix + "features.csv", panels.feature_list);
-  if (!panels.background.empty()) Save(dir + prefix + "background.png", panels.background);
+  // The stages the paper does not have, outside the montage.
+  const std::vector<std::pair<std::string, cv::Mat>> additions = {
+      {"background", panels.background}, {"depth_change", panels.depth_change},
+      {"map_occlusion", panels.map_occlusion}};
+  for (const auto& [name, image] : additions)
+    if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;
   cv::hconcat(std::vector<cv::Mat>(tiles.begin(), tiles.begin() + 3), top);
   cv::hconcat(std::vector<cv::Mat>(tiles.begin() + 3, tiles.end()), bottom);

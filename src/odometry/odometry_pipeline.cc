@@ -225,6 +225,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     const cv::Mat changed = CarriedIntoFrame(changed_last, current_from_previous);
     // A change over much of the image means the poses disagree, not the scene: no mask then.
     if (DynamicRatio(changed) <= config_.depth_change.max_share) {
+      if (debug) debug->depth_change = changed;
       if (config_.depth_change.seeds_only) {
         change_seeds = changed;
       } else {
@@ -251,7 +252,10 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     }
     last_mask_ = Union(last_mask_, carried);
     record.dynamic_ratio = DynamicRatio(last_mask_);
-    if (debug) debug->fused_mask = last_mask_;
+    if (debug) {
+      debug->map_occlusion = carried;
+      debug->fused_mask = last_mask_;
+    }
     record.times.dynamic_mask_ms += MsSince(t);
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it

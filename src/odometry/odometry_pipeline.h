@@ -41,6 +41,11 @@ struct DebugPanels {
   cv::Mat fused_mask;     // union used to remove features
   cv::Mat features;       // frame t, kept features green, removed red
   cv::Mat background;     // features.refill_from_background: frame t with the mask filled from earlier frames
+  cv::Mat depth_change;   // depth_change.enabled: the depth-change mask carried into frame t (255 =
+                          // changed; joined to fused_mask, or with seeds_only its seeds only); empty
+                          // when not computed or dropped by max_share
+  cv::Mat map_occlusion;  // map_occlusion.enabled: the map occlusion carried into frame t that joined
+                          // fused_mask (with seeded, only its seeded regions); empty when not computed
   std::vector<DebugFeature> feature_list;  // every feature of frame t: the kept ones, then
                                            // the removed ones
 };
