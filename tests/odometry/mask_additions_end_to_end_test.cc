@@ -170,7 +170,7 @@ TEST(MapOcclusionEndToEnd, DebugFramesShowTheDepthChangeAndTheMapOcclusion) {
   const cv::Mat truth = cv::imread(toward + "/" + masks[40].path, cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(truth.empty());
 
-  // The depth change is on the person; with seeds_only it is not in the mask itself.
+  // The depth change is on the person.
   EXPECT_GT(cv::countNonZero(change), 200);
   EXPECT_GT(ShareInside(change, truth), 0.8);
   // The occlusion that joined is on the person too, and all of it is in the mask.
