@@ -73,7 +73,8 @@ void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat&
   // The stages the paper does not have, outside the montage.
   const std::vector<std::pair<std::string, cv::Mat>> additions = {
       {"background", panels.background}, {"depth_change", panels.depth_change},
-      {"map_occlusion", panels.map_occlusion}};
+      {"map_occlusion", panels.map_occlusion},
+      {"map_occlusion_candidates", panels.map_occlusion_candidates}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

@@ -8,8 +8,8 @@
 
 namespace dynvo {
 
-// Writes <dir>/frame_<index>_<panel>.png for each non-empty panel (background, depth_change and
-// map_occlusion too, though they are not in the montage),
+// Writes <dir>/frame_<index>_<panel>.png for each non-empty panel (background, depth_change,
+// map_occlusion and map_occlusion_candidates too, though they are not in the montage),
 // <dir>/frame_<index>_panels.png (2 x 3 grid with titles) and <dir>/frame_<index>_features.csv
 // (one line per feature: x, y, octave, depth_m, status kept/removed/readmitted, inlier 0/1).
 // Throws InputError when a file cannot be written.

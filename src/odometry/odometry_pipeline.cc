@@ -247,6 +247,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     if (config_.map_occlusion.seeded) {
       cv::Mat seeds = Union(last_mask_, change_seeds);
       if (!kept_occlusion_.empty()) seeds = Union(seeds, CarriedIntoFrame(kept_occlusion_, current_from_previous));
+      if (debug) debug->map_occlusion_candidates = carried;
       carried = RegionsTouching(carried, seeds);  // no seeds: nothing kept
       kept_occlusion_ = carried;
     }

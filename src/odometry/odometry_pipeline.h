@@ -46,6 +46,8 @@ struct DebugPanels {
                           // when not computed or dropped by max_share
   cv::Mat map_occlusion;  // map_occlusion.enabled: the map occlusion carried into frame t that joined
                           // fused_mask (with seeded, only its seeded regions); empty when not computed
+  cv::Mat map_occlusion_candidates;  // map_occlusion.seeded: all of the carried map occlusion, the
+                                     // regions the seeding chose from
   std::vector<DebugFeature> feature_list;  // every feature of frame t: the kept ones, then
                                            // the removed ones
 };

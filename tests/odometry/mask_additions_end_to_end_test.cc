@@ -16,7 +16,7 @@
 // precision 0.79, against depth change joining the mask alone (the first test) 0.277; on the
 // same camera path without people, 0 features removed.
 // The debug panels of frame 40 of that run: the depth change 2764 pixels, all on the person; the
-// map occlusion that joined the mask 9692 pixels, 77.6% on the person.
+// map occlusion that joined the mask 9692 pixels, 77.6% on the person, of 12214 candidates.
 
 #include <filesystem>
 #include <string>
@@ -161,7 +161,9 @@ TEST(MapOcclusionEndToEnd, DebugFramesShowTheDepthChangeAndTheMapOcclusion) {
   const cv::Mat change = cv::imread(with + "depth_change.png", cv::IMREAD_GRAYSCALE);
   const cv::Mat occlusion = cv::imread(with + "map_occlusion.png", cv::IMREAD_GRAYSCALE);
   const cv::Mat fused = cv::imread(with + "fused_mask.png", cv::IMREAD_GRAYSCALE);
+  const cv::Mat candidates = cv::imread(with + "map_occlusion_candidates.png", cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(change.empty());
+  ASSERT_FALSE(candidates.empty());
   ASSERT_FALSE(occlusion.empty());
   ASSERT_FALSE(fused.empty());
   // Frame 40's ground-truth mask (the 41st line of masks.txt).
@@ -177,15 +179,20 @@ TEST(MapOcclusionEndToEnd, DebugFramesShowTheDepthChangeAndTheMapOcclusion) {
   EXPECT_GT(cv::countNonZero(occlusion), 1000);
   EXPECT_GT(ShareInside(occlusion, truth), 0.6);
   EXPECT_EQ(cv::countNonZero(occlusion & ~fused), 0);
+  // The seeding chose it from the candidates and left some of them out.
+  EXPECT_EQ(cv::countNonZero(occlusion & ~candidates), 0);
+  EXPECT_GT(cv::countNonZero(candidates), cv::countNonZero(occlusion));
   RecordProperty("depth_change_px", cv::countNonZero(change));
   RecordProperty("depth_change_on_person_permille", static_cast<int>(1000 * ShareInside(change, truth)));
   RecordProperty("map_occlusion_px", cv::countNonZero(occlusion));
   RecordProperty("map_occlusion_on_person_permille", static_cast<int>(1000 * ShareInside(occlusion, truth)));
+  RecordProperty("map_occlusion_candidates_px", cv::countNonZero(candidates));
 
   // Without the additions there are no such panels.
   const std::string paper = run("paper", {});
   EXPECT_FALSE(std::filesystem::exists(paper + "depth_change.png"));
   EXPECT_FALSE(std::filesystem::exists(paper + "map_occlusion.png"));
+  EXPECT_FALSE(std::filesystem::exists(paper + "map_occlusion_candidates.png"));
   EXPECT_TRUE(std::filesystem::exists(paper + "fused_mask.png"));
 }
 
