@@ -158,7 +158,6 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     record.mask_ok = true;
     record.dynamic_ratio = DynamicRatio(last_mask_);
     record.times.dynamic_mask_ms = MsSince(t);
-    if (debug) debug->fused_mask = last_mask_;
   } else if (config_.dynamic_mask_enabled) {
     if (previous_gray_.empty()) {
       record.mask_note = "first frame: no previous frame to difference";
@@ -202,7 +201,6 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
         debug->difference = mask.difference;
         debug->forward_mask = mask.forward_mask;
         debug->backward_mask = mask.backward_mask;
-        debug->fused_mask = mask.mask;
       }
     }
   }
@@ -214,6 +212,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // computed when there is no occlusion mask to seed).
   const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
   cv::Mat change_seeds;
+  bool mask_extended = false;  // steps 1b or 1c joined something to the detector's mask
   if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
       past_depths_.size() >= span && (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
     const auto t = Clock::now();
@@ -230,8 +229,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
         change_seeds = changed;
       } else {
         last_mask_ = Union(last_mask_, changed);
-        record.dynamic_ratio = DynamicRatio(last_mask_);
-        if (debug) debug->fused_mask = last_mask_;
+        mask_extended = true;
       }
     }
     record.times.dynamic_mask_ms += MsSince(t);
@@ -252,15 +250,15 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
       kept_occlusion_ = carried;
     }
     last_mask_ = Union(last_mask_, carried);
-    record.dynamic_ratio = DynamicRatio(last_mask_);
-    if (debug) {
-      debug->map_occlusion = carried;
-      debug->fused_mask = last_mask_;
-    }
+    mask_extended = true;
+    if (debug) debug->map_occlusion = carried;
     record.times.dynamic_mask_ms += MsSince(t);
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
+  // The mask features are removed by (the detector's ratio stands when nothing joined it).
+  if (mask_extended) record.dynamic_ratio = DynamicRatio(last_mask_);
+  if (debug) debug->fused_mask = last_mask_;
 
   // 3. Features minus the dynamic ones.
   auto t = Clock::now();
