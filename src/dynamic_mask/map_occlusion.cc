@@ -26,7 +26,7 @@ void MapOcclusionOptions::Check() const {
 }
 
 cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d>& points_in_camera,
-                         const Camera& camera, const MapOcclusionOptions& options) {
+                         const Camera& camera, const MapOcclusionOptions& options, cv::Mat* explained) {
   options.Check();
   if (depth.empty() || depth.type() != CV_32FC1)
     throw InputError("MapOcclusionMask: depth must be a non-empty CV_32FC1 image");
@@ -52,20 +52,32 @@ cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d
               cv::Scalar(kNone));
     cv::boxFilter(count, count, -1, cv::Size(side, side), cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
   }
-  // The depth below which a pixel of each cell is in front (0 = no decision).
+  // The depth below which a pixel of each cell is in front, and whether the cell decides.
   cv::Mat bar = cv::Mat::zeros(grid_rows, grid_cols, CV_32FC1);
+  cv::Mat decides = cv::Mat::zeros(grid_rows, grid_cols, CV_8UC1);
   for (int gy = 0; gy < grid_rows; ++gy)
     for (int gx = 0; gx < grid_cols; ++gx)
-      if (count.at<float>(gy, gx) >= static_cast<float>(options.min_points))
+      if (count.at<float>(gy, gx) >= static_cast<float>(options.min_points)) {
         bar.at<float>(gy, gx) = static_cast<float>(nearest.at<float>(gy, gx) * (1.0 - options.relative_margin) -
                                                    options.absolute_margin_m);
+        decides.at<uint8_t>(gy, gx) = 1;
+      }
   cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);
+  if (explained) *explained = cv::Mat::zeros(depth.size(), CV_8UC1);
   for (int y = 0; y < depth.rows; ++y) {
     const float* d = depth.ptr<float>(y);
     const float* row_bar = bar.ptr<float>(y / cell);
+    const uint8_t* row_decides = decides.ptr<uint8_t>(y / cell);
     uint8_t* m = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < depth.cols; ++x)
-      if (d[x] > 0.0f && d[x] < row_bar[x / cell]) m[x] = 255;
+    uint8_t* e = explained ? explained->ptr<uint8_t>(y) : nullptr;
+    for (int x = 0; x < depth.cols; ++x) {
+      if (d[x] <= 0.0f || !row_decides[x / cell]) continue;
+      if (d[x] < row_bar[x / cell]) {
+        m[x] = 255;
+      } else if (e) {
+        e[x] = 255;
+      }
+    }
   }
   if (options.open_px > 0)
     cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat::ones(options.open_px, options.open_px, CV_8UC1));

@@ -35,8 +35,10 @@ struct MapOcclusionOptions {
 // the static map in this camera's frame) that projects into their grid neighbourhood, by the
 // margins of `options`; opened by an `open_px` square and grown by `grow_px`. CV_8UC1, 255 = in
 // front. Pixels without depth or with fewer than min_points map points around are never marked.
+// With `explained`, also the pixels the map explains: with depth, enough map points around, and
+// not in front of them (CV_8UC1, 255 = explained; neither opened nor grown).
 // Throws InputError on a wrong depth type or invalid options.
 cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d>& points_in_camera,
-                         const Camera& camera, const MapOcclusionOptions& options);
+                         const Camera& camera, const MapOcclusionOptions& options, cv::Mat* explained = nullptr);
 
 }  // namespace dynvo

@@ -32,6 +32,9 @@ void OdometryConfig::Check() const {
     throw InputError("map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
   if (map_occlusion.enabled && dynamic_mask_source != MaskSource::kDifference)
     throw InputError("map_occlusion.enabled needs dynamic_mask.source \"difference\"");
+  depth_trim.Check();
+  if (depth_trim.enabled && !map_occlusion.enabled)
+    throw InputError("depth_trim.enabled needs map_occlusion.enabled (only what the static map explains is trimmed)");
   features.Check();
   tracker.Check();
   run.Check();
@@ -170,6 +173,17 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("map_occlusion.seeded", &o->seeded,
           "keep only its regions that touch the detector's mask (with depth_change.seeds_only, or the "
           "depth-change mask) or a region kept the frame before");
+  // depth trim
+  DepthTrimOptions* trim = &c->depth_trim;
+  r->Bind("depth_trim.enabled", &trim->enabled,
+          "trim each region of the fused mask to its near surface: where its depths fall into two groups "
+          "(Otsu) and the static map explains the farther one (the background behind what moves), that one "
+          "is dropped (needs map_occlusion.enabled)");
+  r->Bind("depth_trim.min_gap", &trim->min_gap,
+          "the farther group's mean depth must exceed the nearer's by this fraction for a region to be trimmed");
+  r->Bind("depth_trim.min_region_px", &trim->min_region_px, "smaller mask regions are kept whole");
+  r->Bind("depth_trim.min_explained", &trim->min_explained,
+          "the share of the farther group's pixels the static map must explain for it to be dropped ([0, 1])");
   // features
   FeatureOptions* f = &c->features;
   r->Bind("features.num_features", &f->num_features, "ORB features per frame");

@@ -8,6 +8,7 @@
 #include "core/camera.h"
 #include "dataset/tum_dataset.h"
 #include "dynamic_mask/depth_change.h"
+#include "dynamic_mask/depth_trim.h"
 #include "dynamic_mask/dynamic_mask_options.h"
 #include "dynamic_mask/map_occlusion.h"
 #include "ego_motion/homography.h"
@@ -48,6 +49,7 @@ struct OdometryConfig {
   DynamicMaskOptions dynamic_mask;
   DepthChangeOptions depth_change;  // with dynamic_mask_enabled and the difference source
   MapOcclusionOptions map_occlusion;  // likewise
+  DepthTrimOptions depth_trim;        // with map_occlusion
   FeatureOptions features;
   TrackerOptions tracker;
   RunOptions run;

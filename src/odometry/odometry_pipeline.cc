@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "dynamic_mask/background_fill.h"
+#include "dynamic_mask/depth_trim.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "dynamic_mask/map_occlusion.h"
 #include "dynamic_mask/mask_morphology.h"
@@ -212,7 +213,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // computed when there is no occlusion mask to seed).
   const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
   cv::Mat change_seeds;
-  bool mask_extended = false;  // steps 1b or 1c joined something to the detector's mask
+  bool mask_extended = false;  // steps 1b-1d changed the detector's mask
   if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
       past_depths_.size() >= span && (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
     const auto t = Clock::now();
@@ -255,6 +256,17 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     record.times.dynamic_mask_ms += MsSince(t);
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
+  }
+  // 1d. Trim (depth_trim): each region of the mask cut to its near surface where the static map
+  // explains the rest (frame t-1's map test, carried into frame t by the homography), so that the
+  // background the dilations spilled over around a person gives its features back.
+  if (config_.depth_trim.enabled && !last_mask_.empty() && !frame.depth.empty() && !map_explained_.empty() &&
+      has_current_from_previous) {
+    const auto t = Clock::now();
+    last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth,
+                                       CarriedIntoFrame(map_explained_, current_from_previous), config_.depth_trim);
+    mask_extended = true;
+    record.times.dynamic_mask_ms += MsSince(t);
   }
   // The mask features are removed by (the detector's ratio stands when nothing joined it).
   if (mask_extended) record.dynamic_ratio = DynamicRatio(last_mask_);
@@ -325,7 +337,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
 
   if (config_.map_occlusion.enabled) {
     t = Clock::now();
-    occlusion_mask_ = MapOcclusionOf(frame, tracking);
+    occlusion_mask_ = MapOcclusionOf(frame, tracking, config_.depth_trim.enabled ? &map_explained_ : nullptr);
     record.times.dynamic_mask_ms += MsSince(t);
   }
   previous_gray_ = frame.gray;
@@ -341,14 +353,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   return record;
 }
 
-cv::Mat OdometryPipeline::MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking) {
+cv::Mat OdometryPipeline::MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking,
+                                         cv::Mat* explained) {
+  if (explained) explained->release();
   if (frame.depth.empty() || tracking.state != TrackingState::kTracking) return cv::Mat();
   // The points tracking trusts (unconfirmed ones may lie on what moves), in this camera's frame.
   const Pose camera_from_world = tracking.world_from_camera.inverse();
   std::vector<Eigen::Vector3d> points_in_camera;
   for (const auto& [id, point] : tracker_.map().points())
     if (point.unconfirmed_frames == 0) points_in_camera.push_back(camera_from_world * point.position_in_world);
-  return MapOcclusionMask(frame.depth, points_in_camera, camera_, config_.map_occlusion);
+  return MapOcclusionMask(frame.depth, points_in_camera, camera_, config_.map_occlusion, explained);
 }
 
 }  // namespace dynvo

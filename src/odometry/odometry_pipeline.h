@@ -38,7 +38,7 @@ struct DebugPanels {
   cv::Mat difference;     // |t - warp(t-1)|
   cv::Mat forward_mask;   // after threshold and morphology
   cv::Mat backward_mask;  // (empty when backward detection is off)
-  cv::Mat fused_mask;     // union used to remove features
+  cv::Mat fused_mask;     // the mask that removed features: the union, trimmed with depth_trim
   cv::Mat features;       // frame t, kept features green, removed red
   cv::Mat background;     // features.refill_from_background: frame t with the mask filled from earlier frames
   cv::Mat depth_change;   // depth_change.enabled: the depth-change mask carried into frame t (255 =
@@ -78,7 +78,8 @@ class OdometryPipeline {
  private:
   // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
   // (empty when the frame has no depth or was not tracked).
-  cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking);
+  // With `explained`, also where the map explains the frame's depth (MapOcclusionMask).
+  cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking, cv::Mat* explained = nullptr);
 
   Camera camera_;
   OdometryConfig config_;
@@ -98,6 +99,7 @@ class OdometryPipeline {
     Pose world_from_camera;   // as estimated
   };
   std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
+  cv::Mat map_explained_;   // depth_trim: where frame t-1's depth is explained by the static map
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
   cv::Mat kept_occlusion_;  // map_occlusion.seeded: the regions of it frame t-1 kept (seeds for frame t)
 };

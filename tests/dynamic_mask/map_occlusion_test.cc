@@ -80,6 +80,31 @@ TEST(MapOcclusion, WithoutMapPointsAroundThereIsNoDecision) {
             (kBox.br().x - camera.width / 2 - options.cell_px) * kBox.height);
 }
 
+TEST(MapOcclusion, TheMapExplainsWhatIsNotInFrontWhereItDecides) {
+  const Camera camera;
+  MapOcclusionOptions options;
+  options.grow_px = 0;
+  // No map points over the left half; a box in front of the wall, and a hole without depth.
+  const cv::Rect left(0, 0, camera.width / 2, camera.height);
+  const std::vector<Eigen::Vector3d> points = PointsOn(Depth(camera, 4.0, 0.0), camera, 20, left);
+  cv::Mat depth = Depth(camera, 4.0, 2.0);
+  const cv::Rect hole(500, 50, 30, 30);
+  depth(hole).setTo(0.0f);
+  cv::Mat explained;
+  const cv::Mat mask = MapOcclusionMask(depth, points, camera, options, &explained);
+  ASSERT_EQ(explained.type(), CV_8UC1);
+  ASSERT_EQ(explained.size(), depth.size());
+  // The wall right of the undecided band is explained, the box (in front) and the hole are not,
+  // and no pixel is both in front and explained.
+  const cv::Rect right(camera.width / 2 + options.cell_px, 0, camera.width / 2 - options.cell_px, camera.height);
+  EXPECT_EQ(CountIn(explained, right), right.area() - CountIn(mask, right) - hole.area());
+  EXPECT_EQ(CountIn(explained, kBox), 0);
+  EXPECT_EQ(CountIn(explained, hole), 0);
+  EXPECT_EQ(cv::countNonZero(explained & mask), 0);
+  // Where the map has no points nothing is explained.
+  EXPECT_EQ(CountIn(explained, cv::Rect(0, 0, camera.width / 2 - 2 * options.cell_px, camera.height)), 0);
+}
+
 TEST(MapOcclusion, MarginsKeepDepthNoiseUnmarked) {
   const Camera camera;
   const std::vector<Eigen::Vector3d> points = PointsOn(Depth(camera, 4.0, 0.0), camera, 20);

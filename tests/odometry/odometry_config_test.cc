@@ -56,7 +56,7 @@ TEST(OdometryConfig, OcclusionIsPaperWithTheMaskAdditions) {
       ConfigPath("paper.json"),
       {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
        "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
-       "features.refill_from_background=true", "features.parallel_levels=true"}));
+       "features.refill_from_background=true", "features.parallel_levels=true", "depth_trim.enabled=true"}));
   EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
 }
 
@@ -92,33 +92,44 @@ TEST(OdometryConfig, OverridesWinOverTheFile) {
   EXPECT_DOUBLE_EQ(c.CameraOverride()->fx, 517.3);
 }
 
-TEST(OdometryConfig, DepthChangeNeedsTheDetector) {
-  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {"depth_change.enabled=true"}));
+// `enabled_key`=true is accepted with paper.json, and refused with the baseline (naming the file
+// and the key) and with the ground-truth masks: each mask addition needs the detector's mask.
+void ExpectNeedsTheDetector(const std::string& enabled_key) {
+  const std::string on = enabled_key + "=true";
+  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {on}));
   try {
-    LoadOdometryConfig(ConfigPath("baseline.json"), {"depth_change.enabled=true"});
-    ADD_FAILURE() << "the baseline has no mask to add to";
+    LoadOdometryConfig(ConfigPath("baseline.json"), {on});
+    ADD_FAILURE() << enabled_key << ": the baseline has no mask to add to";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("depth_change.enabled needs dynamic_mask.enabled"), std::string::npos);
+    EXPECT_EQ(std::string(e.what()), ConfigPath("baseline.json") + ": " + enabled_key +
+                                          " needs dynamic_mask.enabled (the baseline has no mask)");
   }
-  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"),
-                                  {"depth_change.enabled=true", "dynamic_mask.source=ground_truth"}),
-               InputError);
-  EXPECT_THROW(LoadOdometryConfig("", {"depth_change.frames=11"}), InputError);
+  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {on, "dynamic_mask.source=ground_truth"}), InputError)
+      << enabled_key;
 }
 
-TEST(OdometryConfig, MapOcclusionNeedsTheDetector) {
-  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {"map_occlusion.enabled=true"}));
-  try {
-    LoadOdometryConfig(ConfigPath("baseline.json"), {"map_occlusion.enabled=true"});
-    ADD_FAILURE() << "the baseline has no mask to add to";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), ConfigPath("baseline.json") +
-                                          ": map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
-  }
-  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"),
-                                  {"map_occlusion.enabled=true", "dynamic_mask.source=ground_truth"}),
-               InputError);
+TEST(OdometryConfig, MaskAdditionsNeedTheDetector) {
+  ExpectNeedsTheDetector("depth_change.enabled");
+  ExpectNeedsTheDetector("map_occlusion.enabled");
+  EXPECT_THROW(LoadOdometryConfig("", {"depth_change.frames=11"}), InputError);
   EXPECT_THROW(LoadOdometryConfig("", {"map_occlusion.grow_px=65"}), InputError);
+}
+
+TEST(OdometryConfig, DepthTrimNeedsTheMapOcclusion) {
+  EXPECT_NO_THROW(
+      LoadOdometryConfig(ConfigPath("paper.json"), {"map_occlusion.enabled=true", "depth_trim.enabled=true"}));
+  try {
+    LoadOdometryConfig(ConfigPath("paper.json"), {"depth_trim.enabled=true"});
+    ADD_FAILURE() << "without the map occlusion nothing says what the map explains";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              ConfigPath("paper.json") +
+                  ": depth_trim.enabled needs map_occlusion.enabled (only what the static map explains is trimmed)");
+  }
+  EXPECT_THROW(LoadOdometryConfig(ConfigPath("baseline.json"), {"depth_trim.enabled=true"}), InputError);
+  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_gap=-0.1"}), InputError);
+  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_region_px=0"}), InputError);
+  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_explained=1.5"}), InputError);
 }
 
 TEST(OdometryConfig, DepthChangeSeedsNeedTheSeededMapOcclusion) {
