@@ -1,7 +1,6 @@
 #include "dynamic_mask/depth_trim.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -10,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "dynamic_mask/difference_threshold.h"
 
 namespace dynvo {
 
@@ -23,32 +23,7 @@ void DepthTrimOptions::Check() const {
 
 namespace {
 
-constexpr int kBins = 64;
-
-// Otsu's threshold (a bin index: bins <= it are the lower class) of a histogram; -1 when one
-// class would be empty.
-int OtsuBin(const std::array<double, kBins>& histogram) {
-  double total = 0.0, weighted = 0.0;
-  for (int i = 0; i < kBins; ++i) {
-    total += histogram[i];
-    weighted += i * histogram[i];
-  }
-  double below = 0.0, below_weighted = 0.0, best = -1.0;
-  int best_bin = -1;
-  for (int i = 0; i < kBins - 1; ++i) {
-    below += histogram[i];
-    below_weighted += i * histogram[i];
-    const double above = total - below;
-    if (below <= 0.0 || above <= 0.0) continue;
-    const double difference = below_weighted / below - (weighted - below_weighted) / above;
-    const double between = below * above * difference * difference;
-    if (between > best) {
-      best = between;
-      best_bin = i;
-    }
-  }
-  return best_bin;
-}
+constexpr int kBins = 64;  // levels of log depth Otsu's threshold chooses from
 
 }  // namespace
 
@@ -68,50 +43,52 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
     if (stats.at<int>(r, cv::CC_STAT_AREA) < options.min_region_px) continue;
     const cv::Rect box(stats.at<int>(r, cv::CC_STAT_LEFT), stats.at<int>(r, cv::CC_STAT_TOP),
                        stats.at<int>(r, cv::CC_STAT_WIDTH), stats.at<int>(r, cv::CC_STAT_HEIGHT));
-    std::vector<float> logs;
+    // The region's log depths, quantised to kBins levels over their range; Otsu splits them.
+    cv::Mat log_depth(box.size(), CV_32FC1, cv::Scalar(0.0f));
+    cv::Mat in_region = cv::Mat::zeros(box.size(), CV_8UC1);  // region pixels with depth
     float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (int y = box.y; y < box.y + box.height; ++y)
-      for (int x = box.x; x < box.x + box.width; ++x) {
-        const float z = depth.at<float>(y, x);
-        if (labels.at<int>(y, x) != r || z <= 0.0f) continue;
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x) {
+        const float z = depth.at<float>(box.y + y, box.x + x);
+        if (labels.at<int>(box.y + y, box.x + x) != r || z <= 0.0f) continue;
         const float l = std::log(z);
-        logs.push_back(l);
+        log_depth.at<float>(y, x) = l;
+        in_region.at<uint8_t>(y, x) = 255;
         low = std::min(low, l);
         high = std::max(high, l);
       }
-    if (logs.size() < 2 || !(high > low)) continue;
-    const float bin_width = (high - low) / kBins;
-    auto bin_of = [&](float l) { return std::min(kBins - 1, static_cast<int>((l - low) / bin_width)); };
-    std::array<double, kBins> histogram{};
-    for (float l : logs) histogram[bin_of(l)] += 1.0;
-    const int split = OtsuBin(histogram);
-    if (split < 0) continue;
+    if (!(high > low)) continue;  // no pixel with depth, or one depth
+    const float level_width = (high - low) / kBins;
+    cv::Mat level = cv::Mat::zeros(box.size(), CV_8UC1);
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x)
+        if (in_region.at<uint8_t>(y, x))
+          level.at<uint8_t>(y, x) = static_cast<uint8_t>(
+              std::min(kBins - 1, static_cast<int>((log_depth.at<float>(y, x) - low) / level_width)));
+    const int split = OtsuThreshold(level, in_region);  // levels above it are the farther group
+    // The two groups' mean depths, and how much of the farther group the map explains.
     double near_sum = 0.0, far_sum = 0.0;
-    int near_count = 0, far_count = 0;
-    for (float l : logs) {
-      if (bin_of(l) <= split) {
-        near_sum += std::exp(l);
-        ++near_count;
-      } else {
-        far_sum += std::exp(l);
-        ++far_count;
+    int near_count = 0, far_count = 0, far_explained = 0;
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x) {
+        if (!in_region.at<uint8_t>(y, x)) continue;
+        const double z = depth.at<float>(box.y + y, box.x + x);
+        if (level.at<uint8_t>(y, x) > split) {
+          far_sum += z;
+          ++far_count;
+          if (explained.at<uint8_t>(box.y + y, box.x + x)) ++far_explained;
+        } else {
+          near_sum += z;
+          ++near_count;
+        }
       }
-    }
     if (near_count == 0 || far_count == 0) continue;
     if (far_sum / far_count <= (1.0 + options.min_gap) * (near_sum / near_count)) continue;
-    // The farther group's pixels, and how many of them the map explains.
-    auto in_far_group = [&](int x, int y) {
-      const float z = depth.at<float>(y, x);
-      return labels.at<int>(y, x) == r && z > 0.0f && bin_of(std::log(z)) > split;
-    };
-    int far_explained = 0;
-    for (int y = box.y; y < box.y + box.height; ++y)
-      for (int x = box.x; x < box.x + box.width; ++x)
-        if (in_far_group(x, y) && explained.at<uint8_t>(y, x)) ++far_explained;
     if (far_explained < options.min_explained * far_count) continue;
-    for (int y = box.y; y < box.y + box.height; ++y)
-      for (int x = box.x; x < box.x + box.width; ++x)
-        if (in_far_group(x, y)) trimmed.at<uint8_t>(y, x) = 0;
+    for (int y = 0; y < box.height; ++y)
+      for (int x = 0; x < box.width; ++x)
+        if (in_region.at<uint8_t>(y, x) && level.at<uint8_t>(y, x) > split)
+          trimmed.at<uint8_t>(box.y + y, box.x + x) = 0;
   }
   return trimmed;
 }

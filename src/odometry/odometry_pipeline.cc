@@ -261,7 +261,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // explains the rest (frame t-1's map test, carried into frame t by the homography), so that the
   // background the dilations spilled over around a person gives its features back.
   if (config_.depth_trim.enabled && !last_mask_.empty() && !frame.depth.empty() && !map_explained_.empty() &&
-      has_current_from_previous) {
+      has_current_from_previous && cv::countNonZero(last_mask_) > 0) {  // nothing to trim: no warp
     const auto t = Clock::now();
     last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth,
                                        CarriedIntoFrame(map_explained_, current_from_previous), config_.depth_trim);

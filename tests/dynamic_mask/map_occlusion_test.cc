@@ -40,6 +40,14 @@ std::vector<Eigen::Vector3d> PointsOn(const cv::Mat& depth, const Camera& camera
 
 int CountIn(const cv::Mat& mask, const cv::Rect& area) { return cv::countNonZero(mask(area)); }
 
+// The left half of the image, where the wall map of MapWithoutLeftHalf has no points.
+cv::Rect LeftHalf(const Camera& camera) { return cv::Rect(0, 0, camera.width / 2, camera.height); }
+
+// Points on the wall at 4 m every 20 px, none over the left half.
+std::vector<Eigen::Vector3d> MapWithoutLeftHalf(const Camera& camera) {
+  return PointsOn(Depth(camera, 4.0, 0.0), camera, 20, LeftHalf(camera));
+}
+
 TEST(MapOcclusion, ABoxInFrontOfTheMappedWallIsMarkedAndNothingElse) {
   const Camera camera;
   const MapOcclusionOptions options;
@@ -68,8 +76,7 @@ TEST(MapOcclusion, WithoutMapPointsAroundThereIsNoDecision) {
   MapOcclusionOptions options;
   options.grow_px = 0;
   // No map points over the left half of the image: the box's left part is not judged.
-  const cv::Rect left(0, 0, camera.width / 2, camera.height);
-  const std::vector<Eigen::Vector3d> points = PointsOn(Depth(camera, 4.0, 0.0), camera, 20, left);
+  const std::vector<Eigen::Vector3d> points = MapWithoutLeftHalf(camera);
   const cv::Mat mask = MapOcclusionMask(Depth(camera, 4.0, 2.0), points, camera, options);
   // A pixel is judged from the points of its cell and the cells next to it (neighbourhood_cells
   // 1): the box's columns more than one cell left of the middle have none around them; those
@@ -85,8 +92,7 @@ TEST(MapOcclusion, TheMapExplainsWhatIsNotInFrontWhereItDecides) {
   MapOcclusionOptions options;
   options.grow_px = 0;
   // No map points over the left half; a box in front of the wall, and a hole without depth.
-  const cv::Rect left(0, 0, camera.width / 2, camera.height);
-  const std::vector<Eigen::Vector3d> points = PointsOn(Depth(camera, 4.0, 0.0), camera, 20, left);
+  const std::vector<Eigen::Vector3d> points = MapWithoutLeftHalf(camera);
   cv::Mat depth = Depth(camera, 4.0, 2.0);
   const cv::Rect hole(500, 50, 30, 30);
   depth(hole).setTo(0.0f);
