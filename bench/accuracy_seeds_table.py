@@ -32,7 +32,8 @@ print("Per-second translational RPE RMSE (m/s) of the real sequences over %d RAN
       "features never rejoin and new map points are trusted at once (`--set "
       "dynamic_mask.min_otsu_threshold=0 --set tracking.readmit_masked_px=0 --set "
       "tracking.new_point_confirmations=0`). Occlusion: configs/occlusion.json (paper.json with the seeded "
-      "map occlusion, its depth-change seeds, the depth trim, the refill and the background fill). Generated "
+      "map occlusion, its depth-change seeds, the depth trim, the refill, the background fill and coherent "
+      "motion left out of the pose). Generated "
       "by `bash "
       "bench/accuracy.sh`."
       % (seeds, seeds))

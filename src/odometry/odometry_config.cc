@@ -264,6 +264,21 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("tracking.new_point_max_shift_m", &t->new_point_max_shift_m,
           "... a frame checks its unconfirmed points when they move its camera centre by more "
           "than this from the pose of the trusted points (metres)");
+  r->Bind("tracking.coherent_motion.enabled", &t->coherent_motion.enabled,
+          "pose inliers that share with their neighbours (in the image and in depth) a reprojection "
+          "error departing from the frame's smooth error field leave the pose and the map: what "
+          "moves too little to be masked");
+  r->Bind("tracking.coherent_motion.radius_px", &t->coherent_motion.radius_px,
+          "neighbours lie within this image distance (pixels)");
+  r->Bind("tracking.coherent_motion.max_depth_ratio", &t->coherent_motion.max_depth_ratio,
+          "neighbours differ in depth by at most this ratio (log of the depths)");
+  r->Bind("tracking.coherent_motion.min_neighbours", &t->coherent_motion.min_neighbours,
+          "a smaller neighbourhood (the point included) is never flagged");
+  r->Bind("tracking.coherent_motion.min_z", &t->coherent_motion.min_z,
+          "standard errors by which the neighbours' mean departure from the frame's error field "
+          "must exceed to flag (the point itself must have moved at least half as far along it)");
+  r->Bind("tracking.coherent_motion.min_sigma_px", &t->coherent_motion.min_sigma_px,
+          "floor under the robust scale of the departures (pixels)");
   r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
           "match again this close to the first pose estimate and refine once more (0 = off)");
   // run

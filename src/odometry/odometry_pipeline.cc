@@ -329,6 +329,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.num_inliers = tracking.num_inliers;
   record.features_readmitted = static_cast<int>(tracking.readmitted.size());
   record.new_points_rejected = tracking.new_points_rejected;
+  record.coherent_motion_rejected = tracking.coherent_motion_rejected;
   record.keyframe = tracking.keyframe_inserted;
   record.times.match_ms = tracking.match_ms;
   record.times.pose_ms = tracking.pose_ms;

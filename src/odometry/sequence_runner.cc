@@ -65,7 +65,8 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
-  long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0;
+  long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0,
+            coherent_motion_rejected = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -87,6 +88,7 @@ struct RunTally {
     features_removed += r.features_removed;
     features_readmitted += r.features_readmitted;
     new_points_rejected += r.new_points_rejected;
+    coherent_motion_rejected += r.coherent_motion_rejected;
     if (r.mask_quality) {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
@@ -190,7 +192,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                       {"masks_failed", tally.mask_failed},
                       {"features_removed", tally.features_removed},
                       {"features_readmitted", tally.features_readmitted},
-                      {"new_points_rejected", tally.new_points_rejected}};
+                      {"new_points_rejected", tally.new_points_rejected},
+                      {"coherent_motion_rejected", tally.coherent_motion_rejected}};
   nlohmann::json stages;
   for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
   report["time"] = {{"processing_ms", Summary(tally.processing)},

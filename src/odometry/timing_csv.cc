@@ -31,7 +31,7 @@ const char* TimingCsvWriter::Header() {
   return "frame,stamp,load_ms,dynamic_mask_ms,features_ms,filter_ms,match_ms,pose_ms,map_ms,"
          "local_ba_ms,processing_ms,features_total,features_kept,features_removed,features_readmitted,"
          "dynamic_ratio,mask_threshold,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,"
-         "new_points_rejected,keyframe,"
+         "new_points_rejected,coherent_motion_rejected,keyframe,"
          "mask_precision,mask_recall,mask_iou";
 }
 
@@ -53,7 +53,8 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
        << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ','
        << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
        << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches << ','
-       << r.num_inliers << ',' << r.new_points_rejected << ',' << (r.keyframe ? 1 : 0) << ',';
+       << r.num_inliers << ',' << r.new_points_rejected << ',' << r.coherent_motion_rejected << ','
+       << (r.keyframe ? 1 : 0) << ',';
   if (r.mask_quality) {
     out_ << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5)
          << ',' << Fixed(r.mask_quality->Iou(), 5);

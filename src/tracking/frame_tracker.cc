@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -45,6 +46,7 @@ void TrackerOptions::Check() const {
   map.Check();
   keyframes.Check();
   local_ba.Check();
+  coherent_motion.Check();
   RequireOption(min_matches >= 4, "tracking", "min_matches", ">= 4", min_matches);
   RequireOption(wide_search_factor >= 1.0, "tracking", "wide_search_factor", ">= 1", wide_search_factor);
   RequireOption(max_new_points >= 0, "tracking", "max_new_points", ">= 0", max_new_points);
@@ -123,6 +125,9 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
   const FrameFeatures& used = readmitted ? joined : features;
   if (estimate.ok && options_.new_point_confirmations > 0)
     ConfirmNewMapPoints(used, matches, estimate, result);
+  moving_features_.assign(used.size(), 0);
+  if (estimate.ok && options_.coherent_motion.enabled)
+    RejectCoherentMotion(used, matches, estimate, result);
 
   const Clock::time_point start = Clock::now();
   if (estimate.ok) {
@@ -353,6 +358,58 @@ void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
   result.pose_ms += MillisecondsSince(start);
 }
 
+void FrameTracker::RejectCoherentMotion(const FrameFeatures& features,
+                                        const std::vector<Match>& matches, PoseEstimate& estimate,
+                                        TrackingResult& result) {
+  const Clock::time_point start = Clock::now();
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  Correspondences(features, matches, points, pixels);
+  std::vector<size_t> inlier_indices;
+  std::vector<Eigen::Vector2d> inlier_pixels, residuals;
+  std::vector<double> depths;
+  for (size_t i = 0; i < matches.size(); ++i) {
+    if (!estimate.inliers[i]) continue;
+    const Eigen::Vector3d in_camera = estimate.camera_from_world * points[i];
+    if (in_camera.z() <= 0.0) continue;
+    inlier_indices.push_back(i);
+    inlier_pixels.push_back(pixels[i]);
+    residuals.push_back(pixels[i] - camera_.Project(in_camera));
+    depths.push_back(in_camera.z());
+  }
+  const std::vector<uint8_t> flags =
+      FlagCoherentMotion(inlier_pixels, residuals, depths, options_.coherent_motion);
+  std::vector<uint8_t> use = estimate.inliers;
+  int flagged = 0;
+  for (size_t k = 0; k < flags.size(); ++k) {
+    if (!flags[k]) continue;
+    use[inlier_indices[k]] = 0;
+    ++flagged;
+  }
+  if (flagged > 0) {
+    PoseEstimate refined =
+        RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
+    if (refined.ok && refined.num_inliers >= options_.min_matches) {
+      // RefinePose keeps the flagged ones out (`use` is its start set).
+      std::set<int64_t> moving_points;
+      for (size_t k = 0; k < flags.size(); ++k) {
+        if (!flags[k]) continue;
+        const Match& match = matches[inlier_indices[k]];
+        moving_features_[static_cast<size_t>(match.feature_index)] = 1;
+        moving_points.insert(visible_ids_[static_cast<size_t>(match.point_index)]);
+      }
+      std::vector<std::pair<int64_t, int64_t>> doomed;
+      for (const Keyframe& keyframe : map_.keyframes())
+        for (const KeyframeObservation& o : keyframe.observations)
+          if (moving_points.count(o.point_id)) doomed.emplace_back(keyframe.id, o.point_id);
+      map_.RemoveObservations(doomed);
+      estimate = std::move(refined);
+      result.coherent_motion_rejected = flagged;
+    }
+  }
+  result.pose_ms += MillisecondsSince(start);
+}
+
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {
   visible_ids_.clear();
   visible_points_.clear();
@@ -428,7 +485,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   // New points from the untracked features with depth, the nearest (most accurate) first.
   std::vector<size_t> candidates;
   for (size_t i = 0; i < features.size(); ++i)
-    if (!tracked[i] && HasDepth(features.depths[i])) candidates.push_back(i);
+    if (!tracked[i] && !moving_features_[i] && HasDepth(features.depths[i])) candidates.push_back(i);
   const size_t keep = std::min(candidates.size(), static_cast<size_t>(options_.max_new_points));
   std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
                     candidates.end(), [&](size_t a, size_t b) {

@@ -16,6 +16,7 @@
 #include "mapping/local_map.h"
 #include "pose/pose_solver.h"
 #include "pose/projection_matcher.h"
+#include "tracking/coherent_motion.h"
 #include "tracking/motion_model.h"
 #include "tracking/tracking_state.h"
 
@@ -36,6 +37,7 @@ struct TrackerOptions {
   double max_ba_depth_rotation_deg_s = 30.0;  // a keyframe taken while the camera turns faster
                                        // keeps its depths out of local BA; its new points still
                                        // start from depth (deg/s; 0 = never; >= 0)
+  CoherentMotionOptions coherent_motion;  // "tracking.coherent_motion.*"
   double rematch_radius_px = 5.0;      // after the first pose estimate, match again around it
                                        // within this radius and refine again (pixels; 0 = off,
                                        // >= 0)
@@ -73,6 +75,8 @@ struct TrackingResult {
   bool keyframe_inserted = false;
   int map_keyframes = 0;          // local map size after this frame
   int map_points = 0;
+  int coherent_motion_rejected = 0;  // pose inliers that moved with their neighbours, left out
+                                     // of the pose and the map (coherent_motion)
   int new_points_rejected = 0;    // matches to unconfirmed map points left out of the pose
                                   // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;  // false: the new keyframe's depths were left out of BA
@@ -128,6 +132,11 @@ class FrameTracker {
   // confirms the points it accepts in the map, replaces `estimate` and counts the rejected ones.
   void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches,
                            PoseEstimate& estimate, TrackingResult& result);
+  // Applies FlagCoherentMotion to the estimate's inliers: the flagged ones leave the pose (it
+  // is refined again without them; kept only when that succeeds), their map points leave the
+  // map, and their features (in moving_features_) make no new map points.
+  void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches,
+                            PoseEstimate& estimate, TrackingResult& result);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
@@ -158,6 +167,7 @@ class FrameTracker {
   std::vector<Eigen::Vector3d> visible_points_;
   std::vector<float> visible_angles_;  // ORB angle of each point's reference observation
   std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
+  std::vector<uint8_t> moving_features_;  // 1 per feature of the frame flagged by coherent_motion
   cv::Mat visible_descriptors_;
   // The local BA started at the last keyframe with local_ba.background (declared last so that
   // it is destroyed, and so waited for, before the map it works on).

@@ -50,13 +50,14 @@ TEST(OdometryConfig, BaselineDiffersOnlyByTheDynamicHandling) {
   EXPECT_EQ(paper, baseline) << nlohmann::json::diff(paper, baseline).dump(1);
 }
 
-TEST(OdometryConfig, OcclusionIsPaperWithTheMaskAdditions) {
+TEST(OdometryConfig, OcclusionIsPaperWithTheAdditions) {
   const nlohmann::json occlusion = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("occlusion.json"), {}));
   const nlohmann::json paper_with_additions = OdometryConfigToJson(LoadOdometryConfig(
       ConfigPath("paper.json"),
       {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
        "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
-       "features.refill_from_background=true", "features.parallel_levels=true", "depth_trim.enabled=true"}));
+       "features.refill_from_background=true", "features.parallel_levels=true", "depth_trim.enabled=true",
+       "tracking.coherent_motion.enabled=true"}));
   EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
 }
 
@@ -71,6 +72,8 @@ TEST(OdometryConfig, ErrorsNameFileAndKey) {
             std::string::npos);
   const std::string range = LoadError("", {"dynamic_mask.erode_iterations=-1"});
   EXPECT_NE(range.find("dynamic_mask.erode_iterations"), std::string::npos) << range;
+  const std::string coherent = LoadError("", {"tracking.coherent_motion.min_z=0"});
+  EXPECT_NE(coherent.find("tracking.coherent_motion.min_z must be > 0"), std::string::npos) << coherent;
   const std::string features = LoadError("", {"features.num_features=0"});
   EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
   EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"),

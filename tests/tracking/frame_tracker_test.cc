@@ -447,6 +447,65 @@ TEST(FrameTracker, NewPointsOnAnUnmaskedMovingBoxDoNotPullThePoseOnceConfirmed) 
   EXPECT_LT(Rms(still.t_errors), 1.2 * Rms(still_off.t_errors));
 }
 
+// The wall of TrackWallWithUnmaskedBox and, in front of it at 3.4-3.6 m, a box of 60 other
+// points swaying sideways (amplitude `sway_m`, period 3.3 s: a person sitting in a chair; 2 cm
+// is 3 px here), never masked. Tracks SmoothPath for 120 frames; returns the per-frame translation errors
+// (metres) from frame 1 on and the pose inliers coherent_motion left out.
+struct SwayRun {
+  std::vector<double> t_errors;
+  int rejected = 0;
+};
+SwayRun TrackWallWithSwayingBox(double sway_m, const TrackerOptions& options) {
+  const test::SyntheticWorld wall = test::MakeWorld(1500, {-4.0, -3.0, 3.9}, {4.0, 3.0, 4.1}, 21);
+  const test::SyntheticWorld box = test::MakeWorld(60, {-0.3, -0.6, 3.4}, {0.3, 0.6, 3.6}, 23);
+  std::mt19937 rng(10);
+  test::RenderOptions render;
+  render.max_features = 600;
+  FrameTracker tracker(wall.camera, options);
+  SwayRun out;
+  StepError steps;
+  for (int i = 0; i < 120; ++i) {
+    const Pose truth = SmoothPath(i);
+    const double t = i / kFrameRate;
+    const test::SyntheticWorld moved = ShiftedAlongX(box, sway_m * std::sin(2.0 * 3.14159265358979323846 * t / 3.3));
+    FrameFeatures features = test::Render(wall, truth.inverse(), render, rng);
+    AppendFeatures(test::Render(moved, truth.inverse(), render, rng), &features);
+    const TrackingResult r = tracker.Track(features, t);
+    if (i > 0) {
+      EXPECT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
+    }
+    const double t_error = steps.Next(r.world_from_camera, truth).first;
+    if (i > 0) out.t_errors.push_back(t_error);
+    out.rejected += r.coherent_motion_rejected;
+  }
+  return out;
+}
+
+TEST(FrameTracker, CoherentMotionKeepsASwayingBoxOutOfThePose) {
+  TrackerOptions on;
+  on.new_point_confirmations = 2;
+  on.coherent_motion.enabled = true;
+  TrackerOptions off = on;
+  off.coherent_motion.enabled = false;
+  const SwayRun with = TrackWallWithSwayingBox(0.02, on);
+  const SwayRun without = TrackWallWithSwayingBox(0.02, off);
+  const SwayRun still = TrackWallWithSwayingBox(0.0, on);
+  const SwayRun still_off = TrackWallWithSwayingBox(0.0, off);
+  std::cout << "[ coherent ] swaying box: per-frame RMS " << Rms(with.t_errors) * 1000
+            << " mm (off " << Rms(without.t_errors) * 1000 << "), rejected " << with.rejected
+            << "; still box RMS " << Rms(still.t_errors) * 1000 << " (off "
+            << Rms(still_off.t_errors) * 1000 << "), rejected " << still.rejected << "\n";
+  EXPECT_GT(with.rejected, 0);
+  EXPECT_EQ(without.rejected, 0);
+  // The sway costs 1.1 mm of per-frame RMS against the same box standing still (measured: 3.83
+  // against 2.71 mm); leaving its points out takes back 62% of that (3.13 mm).
+  EXPECT_LT(Rms(with.t_errors),
+            Rms(without.t_errors) - 0.4 * (Rms(without.t_errors) - Rms(still_off.t_errors)));
+  // Where nothing moves, next to nothing is left out and the error stays.
+  EXPECT_LT(still.rejected, 10);  // measured: 0
+  EXPECT_LT(Rms(still.t_errors), 1.05 * Rms(still_off.t_errors));
+}
+
 TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
   const test::SyntheticWorld world = RoomWorld();
   std::mt19937 rng(6);
