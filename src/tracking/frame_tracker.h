@@ -1,8 +1,10 @@
 #pragma once
 // Frame-to-local-map tracking: constant-velocity prediction, projection matching, pose
 // refinement (EPnP + RANSAC when the prediction fails), matching again around the estimate and
-// refining once more, keyframe insertion with new map points from the frame's depth, local
-// bundle adjustment at each keyframe, a bounded map, and recovery from failures. The world frame is the first frame's camera.
+// refining once more, optionally leaving out inliers that move with their neighbours
+// (coherent_motion.h), keyframe insertion with new map points from the frame's depth, local
+// bundle adjustment at each keyframe, a bounded map, and recovery from failures. The world
+// frame is the first frame's camera.
 
 #include <cstdint>
 #include <future>
