@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 #include <string>
 
@@ -95,24 +94,30 @@ std::vector<uint8_t> FlagCoherentMotion(const std::vector<Eigen::Vector2d>& pixe
   std::vector<double> log_depths(n);
   for (size_t i = 0; i < n; ++i) log_depths[i] = std::log(std::max(depths[i], 1e-6));
   // Points bucketed in square cells of the radius: a point's neighbours lie in its cell's 3 x 3.
-  Eigen::Vector2d lo = pixels[0];
-  for (const Eigen::Vector2d& p : pixels) lo = lo.cwiseMin(p);
+  Eigen::Vector2d lo = pixels[0], hi = pixels[0];
+  for (const Eigen::Vector2d& p : pixels) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const int grid_cols = static_cast<int>((hi.x() - lo.x()) / options.radius_px) + 1;
+  const int grid_rows = static_cast<int>((hi.y() - lo.y()) / options.radius_px) + 1;
   const auto cell_of = [&](const Eigen::Vector2d& p) {
     return std::make_pair(static_cast<int>((p.x() - lo.x()) / options.radius_px),
                           static_cast<int>((p.y() - lo.y()) / options.radius_px));
   };
-  std::map<std::pair<int, int>, std::vector<size_t>> cells;
-  for (size_t i = 0; i < n; ++i) cells[cell_of(pixels[i])].push_back(i);
+  std::vector<std::vector<size_t>> cells(static_cast<size_t>(grid_cols) * static_cast<size_t>(grid_rows));
+  for (size_t i = 0; i < n; ++i) {
+    const auto [cx, cy] = cell_of(pixels[i]);
+    cells[static_cast<size_t>(cy) * static_cast<size_t>(grid_cols) + static_cast<size_t>(cx)].push_back(i);
+  }
   const double radius2 = options.radius_px * options.radius_px;
   std::vector<size_t> neighbours;
   for (size_t i = 0; i < n; ++i) {
     neighbours.clear();
     const auto [cx, cy] = cell_of(pixels[i]);
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        const auto cell = cells.find({cx + dx, cy + dy});
-        if (cell == cells.end()) continue;
-        for (size_t j : cell->second) {
+    for (int gx = std::max(cx - 1, 0); gx <= std::min(cx + 1, grid_cols - 1); ++gx) {
+      for (int gy = std::max(cy - 1, 0); gy <= std::min(cy + 1, grid_rows - 1); ++gy) {
+        for (size_t j : cells[static_cast<size_t>(gy) * static_cast<size_t>(grid_cols) + static_cast<size_t>(gx)]) {
           if ((pixels[j] - pixels[i]).squaredNorm() > radius2) continue;
           if (std::abs(log_depths[j] - log_depths[i]) > options.max_depth_ratio) continue;
           neighbours.push_back(j);
