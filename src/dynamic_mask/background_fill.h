@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/image_area.h"
+#include "dynamic_mask/motion_compensation.h"
 
 namespace dynvo {
 
@@ -24,5 +25,11 @@ constexpr int kBackgroundFillMarginPx = 1;
 cv::Mat FillMaskFromBackground(const cv::Mat& current_gray, const cv::Mat& mask, const cv::Mat& previous_background,
                                const Eigen::Matrix3d& current_from_previous, int margin_px,
                                const ImageArea& area = {});
+
+// The same fill with the warp done beforehand (so that a caller can warp while it computes the
+// mask): `carried` is CompensateMotion(previous_background, current_from_previous, size, area), or
+// empty images when there is no previous background. Same result as FillMaskFromBackground.
+cv::Mat FillMaskFromCarriedBackground(const cv::Mat& current_gray, const cv::Mat& mask, const CompensatedImage& carried,
+                                      int margin_px);
 
 }  // namespace dynvo

@@ -206,22 +206,26 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     }
   }
 
+  // What frame t-1 left for the trim and the background fill, carried into frame t by the
+  // homography on the second core (idle once the features are out) while steps 1b-1c run here.
+  std::future<CarriedState> carried_future;
+  if (has_current_from_previous)
+    carried_future = std::async(std::launch::async, [this, &frame, &current_from_previous] {
+      return CarryIntoFrame(current_from_previous, frame.gray.size());
+    });
+
   // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
   // between the last frame and the one `frames` before it, whose poses are both estimated
-  // already, and carried into this frame by the detector's homography (one frame of lag).
-  // With depth_change.seeds_only it does not join the mask; it only seeds step 1c (and is not
-  // computed when there is no occlusion mask to seed).
-  const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
+  // already (computed at the end of the last call), and carried into this frame by the detector's
+  // homography (one frame of lag). With depth_change.seeds_only it does not join the mask; it only
+  // seeds step 1c (and is not computed when there is no occlusion mask to seed).
+  const cv::Mat changed_last = std::move(pending_change_);
+  pending_change_.release();
   cv::Mat change_seeds;
   bool mask_extended = false;  // steps 1b-1d changed the detector's mask
-  if (config_.depth_change.enabled && !NeedsTruthMask() && has_current_from_previous &&
-      past_depths_.size() >= span && (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
+  if (!changed_last.empty() && !NeedsTruthMask() && has_current_from_previous &&
+      (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
     const auto t = Clock::now();
-    const PastDepth& last = past_depths_.back();
-    const PastDepth& earlier = past_depths_[past_depths_.size() - span];
-    const cv::Mat changed_last =
-        DepthChangeMask(last.depth, earlier.depth, camera_,
-                        earlier.world_from_camera.inverse() * last.world_from_camera, config_.depth_change);
     const cv::Mat changed = CarriedIntoFrame(changed_last, current_from_previous);
     // A change over much of the image means the poses disagree, not the scene: no mask then.
     if (DynamicRatio(changed) <= config_.depth_change.max_share) {
@@ -257,14 +261,16 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
+  const auto wait_start = Clock::now();
+  const CarriedState carried = carried_future.valid() ? carried_future.get() : CarriedState{};
+  record.times.dynamic_mask_ms += MsSince(wait_start);
   // 1d. Trim (depth_trim): each region of the mask cut to its near surface where the static map
   // explains the rest (frame t-1's map test, carried into frame t by the homography), so that the
   // background the dilations spilled over around a person gives its features back.
-  if (config_.depth_trim.enabled && !last_mask_.empty() && !frame.depth.empty() && !map_explained_.empty() &&
-      has_current_from_previous && cv::countNonZero(last_mask_) > 0) {  // nothing to trim: no warp
+  if (!carried.map_explained.empty() && !last_mask_.empty() && !frame.depth.empty() &&
+      cv::countNonZero(last_mask_) > 0) {
     const auto t = Clock::now();
-    last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth,
-                                       CarriedIntoFrame(map_explained_, current_from_previous), config_.depth_trim);
+    last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth, carried.map_explained, config_.depth_trim);
     mask_extended = true;
     record.times.dynamic_mask_ms += MsSince(t);
   }
@@ -296,8 +302,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   if (config_.features.refill_from_background) {
     t = Clock::now();
     if (!last_mask_.empty() && has_current_from_previous)
-      described = FillMaskFromBackground(frame.gray, last_mask_, background_gray_, current_from_previous,
-                                         kBackgroundFillMarginPx, image_area_);
+      described = FillMaskFromCarriedBackground(frame.gray, last_mask_, carried.background, kBackgroundFillMarginPx);
     background_gray_ = described;
     if (debug) debug->background = described;
     features_ms += MsSince(t);
@@ -336,28 +341,54 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.times.map_ms = tracking.map_ms;
   record.times.local_ba_ms = tracking.local_ba_ms;
 
-  if (config_.map_occlusion.enabled) {
-    t = Clock::now();
-    occlusion_mask_ = MapOcclusionOf(frame, tracking, config_.depth_trim.enabled ? &map_explained_ : nullptr);
-    record.times.dynamic_mask_ms += MsSince(t);
-  }
-  previous_gray_ = frame.gray;
-  if (config_.depth_change.enabled) {
+  // 5. For the next frame: the map occlusion, and beside it on the second core the depth change.
+  t = Clock::now();
+  std::future<cv::Mat> change_future;
+  if (config_.depth_change.enabled && !NeedsTruthMask()) {
+    const size_t span = static_cast<size_t>(config_.depth_change.frames) + 1;
     if (frame.depth.empty() || tracking.state == TrackingState::kLost) {
       past_depths_.clear();  // no depth, or a pose that is only the motion model's
     } else {
       past_depths_.push_back({frame.depth, tracking.world_from_camera});
       if (past_depths_.size() > span) past_depths_.pop_front();
     }
+    // As seeds only, it is wanted only where the next frame gets an occlusion mask to seed.
+    if (past_depths_.size() == span &&
+        (!config_.depth_change.seeds_only || (config_.map_occlusion.enabled && MapOcclusionPossible(frame, tracking))))
+      change_future = std::async(std::launch::async, [this] {
+        const PastDepth& last = past_depths_.back();
+        const PastDepth& earlier = past_depths_.front();
+        return DepthChangeMask(last.depth, earlier.depth, camera_,
+                               earlier.world_from_camera.inverse() * last.world_from_camera, config_.depth_change);
+      });
   }
+  if (config_.map_occlusion.enabled)
+    occlusion_mask_ = MapOcclusionOf(frame, tracking, config_.depth_trim.enabled ? &map_explained_ : nullptr);
+  if (change_future.valid()) pending_change_ = change_future.get();
+  record.times.dynamic_mask_ms += MsSince(t);
+  previous_gray_ = frame.gray;
   record.times.processing_ms = MsSince(start);
   return record;
+}
+
+OdometryPipeline::CarriedState OdometryPipeline::CarryIntoFrame(const Eigen::Matrix3d& current_from_previous,
+                                                               const cv::Size& size) const {
+  CarriedState carried;
+  if (config_.features.refill_from_background && !background_gray_.empty())
+    CompensateMotion(background_gray_, current_from_previous, size, &carried.background, image_area_);
+  if (config_.depth_trim.enabled && !map_explained_.empty())
+    carried.map_explained = CarriedIntoFrame(map_explained_, current_from_previous);
+  return carried;
+}
+
+bool OdometryPipeline::MapOcclusionPossible(const RgbdFrame& frame, const TrackingResult& tracking) {
+  return !frame.depth.empty() && tracking.state == TrackingState::kTracking;
 }
 
 cv::Mat OdometryPipeline::MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking,
                                          cv::Mat* explained) {
   if (explained) explained->release();
-  if (frame.depth.empty() || tracking.state != TrackingState::kTracking) return cv::Mat();
+  if (!MapOcclusionPossible(frame, tracking)) return cv::Mat();
   // The points tracking trusts (unconfirmed ones may lie on what moves), in this camera's frame.
   const Pose camera_from_world = tracking.world_from_camera.inverse();
   std::vector<Eigen::Vector3d> points_in_camera;

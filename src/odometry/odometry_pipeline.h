@@ -12,6 +12,7 @@
 
 #include "core/camera.h"
 #include "core/image_area.h"
+#include "dynamic_mask/motion_compensation.h"
 #include "dataset/tum_dataset.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_extractor.h"
@@ -80,6 +81,16 @@ class OdometryPipeline {
   // (empty when the frame has no depth or was not tracked).
   // With `explained`, also where the map explains the frame's depth (MapOcclusionMask).
   cv::Mat MapOcclusionOf(const RgbdFrame& frame, const TrackingResult& tracking, cv::Mat* explained = nullptr);
+  // True when MapOcclusionOf gives a mask for this frame: it has depth and was tracked.
+  static bool MapOcclusionPossible(const RgbdFrame& frame, const TrackingResult& tracking);
+
+  // What the last frame left for this one, carried into it by the ego-motion homography.
+  struct CarriedState {
+    CompensatedImage background;  // refill_from_background: background_gray_ warped (empty: none)
+    cv::Mat map_explained;        // depth_trim: map_explained_ warped (empty: none)
+  };
+  // Reads background_gray_ and map_explained_ only, so it may run beside steps 1b-1c.
+  CarriedState CarryIntoFrame(const Eigen::Matrix3d& current_from_previous, const cv::Size& size) const;
 
   Camera camera_;
   OdometryConfig config_;
@@ -99,6 +110,8 @@ class OdometryPipeline {
     Pose world_from_camera;   // as estimated
   };
   std::deque<PastDepth> past_depths_;  // depth_change: the last frames, oldest first
+  cv::Mat pending_change_;  // depth_change: between the last frame and the one `frames` before it
+                            // (computed at the end of the last call; empty when not wanted)
   cv::Mat map_explained_;   // depth_trim: where frame t-1's depth is explained by the static map
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
   cv::Mat kept_occlusion_;  // map_occlusion.seeded: the regions of it frame t-1 kept (seeds for frame t)

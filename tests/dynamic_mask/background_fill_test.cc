@@ -101,6 +101,21 @@ TEST_F(BackgroundFill, EmptyMaskOrNoBackgroundKeepsTheFrame) {
   EXPECT_EQ(CountDifferent(FillMaskFromBackground(moving, mask, cv::Mat(), PanOneFrame(), 1), moving), 0);
 }
 
+TEST_F(BackgroundFill, AWarpDoneBeforehandFillsTheSame) {
+  const cv::Rect box(100, 60, 50, 80);
+  cv::Mat mask, previous_mask;
+  const cv::Mat current = WithMover(WallView(wall, 1), box, &mask);
+  const cv::Mat previous = WithMover(WallView(wall, 0), cv::Rect(20, 30, 40, 40), &previous_mask);
+  const CompensatedImage carried = CompensateMotion(previous, PanOneFrame(), kFrame);
+  const cv::Mat filled = FillMaskFromCarriedBackground(current, mask, carried, 2);
+  EXPECT_EQ(CountDifferent(filled, FillMaskFromBackground(current, mask, previous, PanOneFrame(), 2)), 0);
+  EXPECT_GT(CountDifferent(filled, current), box.area() / 2);  // the box was filled
+  // No previous background: a copy of the frame; a carried image of another size is refused.
+  EXPECT_EQ(CountDifferent(FillMaskFromCarriedBackground(current, mask, CompensatedImage{}, 2), current), 0);
+  const CompensatedImage small = CompensateMotion(previous, PanOneFrame(), cv::Size(40, 30));
+  EXPECT_THROW(FillMaskFromCarriedBackground(current, mask, small, 2), InputError);
+}
+
 TEST_F(BackgroundFill, BadInputsThrow) {
   const cv::Mat current = WallView(wall, 1);
   EXPECT_THROW(FillMaskFromBackground(current, cv::Mat::zeros(10, 10, CV_8UC1), current, PanOneFrame(), 0), InputError);
