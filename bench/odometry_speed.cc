@@ -189,8 +189,7 @@ int main(int argc, char** argv) {
       inliers.clear();
       lost_frames = 0;
       for (size_t i = 0; i < frames.size(); ++i) {
-        const cv::Mat next = i + 1 < frames.size() ? frames[i + 1].gray : cv::Mat();
-        const dynvo::FrameRecord rec = pipeline.Process(frames[i], next);
+        const dynvo::FrameRecord rec = pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr);
         times.push_back(rec.times.processing_ms);
         trajectory.push_back({rec.stamp, rec.world_from_camera});
         stage_last["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);

@@ -283,6 +283,9 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
           "match again this close to the first pose estimate and refine once more (0 = off)");
   // run
   r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
+  r->Bind("run.lookahead", &c->run.lookahead,
+          "compute frame t+1's features and dynamic mask on the second core while frame t is tracked "
+          "(the same results; not with backward \"triplet\" or ground-truth masks)");
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");
 }
 

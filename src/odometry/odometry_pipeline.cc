@@ -113,19 +113,75 @@ bool OdometryPipeline::NeedsTruthMask() const {
   return config_.dynamic_mask_enabled && config_.dynamic_mask_source == MaskSource::kGroundTruth;
 }
 
-FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& next_gray,
+bool OdometryPipeline::LooksAhead() const {
+  return config_.run.lookahead && !NeedsTruthMask() && !NeedsNextFrame();
+}
+
+OdometryPipeline::ImageStages OdometryPipeline::ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                                 const TrackingPyramid& previous_pyramid) {
+  ImageStages stages;
+  const auto extract = [this, &frame, &stages] {
+    const auto t = Clock::now();
+    stages.features = extractor_.Extract(frame.gray, frame.depth, camera_);
+    stages.features_ms = MsSince(t);
+    stages.has_features = true;
+  };
+  if (!config_.dynamic_mask_enabled) {
+    extract();
+    return stages;
+  }
+  std::future<void> features_done = std::async(std::launch::async, extract);  // beside the mask
+  const auto t = Clock::now();
+  DynamicMaskInput input;
+  input.previous_gray = previous_gray;
+  input.current_gray = frame.gray;
+  input.previous_pyramid = previous_pyramid;
+  input.current_pyramid = BuildTrackingPyramid(frame.gray, config_.klt);
+  input.image_area = image_area_;
+  stages.mask = DetectDynamicMask(input, config_.klt, config_.homography, config_.dynamic_mask);
+  stages.pyramid = input.current_pyramid;
+  stages.mask_ms = MsSince(t);
+  stages.has_mask = true;
+  features_done.get();
+  return stages;
+}
+
+void OdometryPipeline::StartLookAhead(const cv::Mat& gray, const RgbdFrame& next) {
+  ahead_gray_ = next.gray;
+  // Copies of the headers: the job reads no member that Process changes before joining it.
+  ahead_ = std::async(std::launch::async, [this, gray, pyramid = previous_pyramid_, next] {
+    return ComputeImageStages(next, gray, pyramid);
+  });
+}
+
+OdometryPipeline::ImageStages OdometryPipeline::TakeLookAhead(const RgbdFrame& frame) {
+  if (!ahead_.valid()) return {};
+  const bool for_this_frame = SameImage(ahead_gray_, frame.gray);
+  ahead_gray_.release();
+  if (for_this_frame) return ahead_.get();  // rethrows the job's error
+  try {
+    ahead_.get();  // another frame came instead: its result, or its error, is dropped
+  } catch (const std::exception&) {
+  }
+  return {};
+}
+
+FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next,
                                       const cv::Mat& truth_mask, DebugPanels* debug) {
   if (NeedsTruthMask()) CheckTruthMask(frame, truth_mask);
   const auto start = Clock::now();
   FrameRecord record;
   record.index = frame.index;
   record.stamp = frame.stamp;
+  const cv::Mat next_gray = next ? next->gray : cv::Mat();
+  // Frame t's features and mask, when the last call computed them (look-ahead).
+  ImageStages stages = TakeLookAhead(frame);
 
   // 2. Features, on a second thread while this one computes the mask: extraction does not
   // depend on the mask, so the result is the same as in sequence.
   std::future<FrameFeatures> features_future;
-  double features_ms = 0.0;
-  if (config_.dynamic_mask_enabled && !previous_gray_.empty()) {
+  double features_ms = stages.features_ms;
+  if (!stages.has_features && config_.dynamic_mask_enabled && !previous_gray_.empty()) {
     features_future = std::async(std::launch::async, [this, &frame, &features_ms] {
       const auto t = Clock::now();
       FrameFeatures extracted = extractor_.Extract(frame.gray, frame.depth, camera_);
@@ -159,12 +215,17 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
     record.mask_ok = true;
     record.dynamic_ratio = DynamicRatio(last_mask_);
     record.times.dynamic_mask_ms = MsSince(t);
+  } else if (config_.dynamic_mask_enabled && previous_gray_.empty()) {
+    record.mask_note = "first frame: no previous frame to difference";
+    const auto t = Clock::now();
+    previous_pyramid_ = BuildTrackingPyramid(frame.gray, config_.klt);  // for the next call
+    record.times.dynamic_mask_ms = MsSince(t);
   } else if (config_.dynamic_mask_enabled) {
-    if (previous_gray_.empty()) {
-      record.mask_note = "first frame: no previous frame to difference";
-      const auto t = Clock::now();
-      previous_pyramid_ = BuildTrackingPyramid(frame.gray, config_.klt);  // for the next call
-      record.times.dynamic_mask_ms = MsSince(t);
+    DynamicMaskResult mask;
+    if (stages.has_mask) {
+      mask = std::move(stages.mask);
+      previous_pyramid_ = stages.pyramid;
+      record.times.dynamic_mask_ms = stages.mask_ms;
     } else {
       const auto t = Clock::now();
       DynamicMaskInput input;
@@ -181,28 +242,27 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
         // The last call's t -> t+1 tracks are this call's t-1 -> t ones.
         if (SameImage(next_gray_, frame.gray)) input.previous_tracks = next_tracks_;
       }
-      DynamicMaskResult mask =
-          DetectDynamicMask(input, config_.klt, config_.homography, config_.dynamic_mask);
+      mask = DetectDynamicMask(input, config_.klt, config_.homography, config_.dynamic_mask);
       previous_pyramid_ = input.current_pyramid;
       next_gray_ = input.next_gray;
       next_pyramid_ = input.next_pyramid;
       next_tracks_ = std::move(mask.next_tracks);
       record.times.dynamic_mask_ms = MsSince(t);
-      record.mask_ok = mask.ok;
-      record.mask_note = mask.ok ? "" : mask.failure;
-      has_current_from_previous = mask.ok;
-      current_from_previous = mask.current_from_previous;
-      if (mask.ok) {
-        last_mask_ = mask.mask;
-        record.dynamic_ratio = mask.dynamic_ratio;
-        record.mask_threshold = mask.forward_threshold;
-      }
-      if (debug) {
-        debug->compensated = mask.compensated;
-        debug->difference = mask.difference;
-        debug->forward_mask = mask.forward_mask;
-        debug->backward_mask = mask.backward_mask;
-      }
+    }
+    record.mask_ok = mask.ok;
+    record.mask_note = mask.ok ? "" : mask.failure;
+    has_current_from_previous = mask.ok;
+    current_from_previous = mask.current_from_previous;
+    if (mask.ok) {
+      last_mask_ = mask.mask;
+      record.dynamic_ratio = mask.dynamic_ratio;
+      record.mask_threshold = mask.forward_threshold;
+    }
+    if (debug) {
+      debug->compensated = mask.compensated;
+      debug->difference = mask.difference;
+      debug->forward_mask = mask.forward_mask;
+      debug->backward_mask = mask.backward_mask;
     }
   }
 
@@ -281,7 +341,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   // 3. Features minus the dynamic ones.
   auto t = Clock::now();
   FrameFeatures features;
-  if (features_future.valid()) {
+  if (stages.has_features) {
+    features = std::move(stages.features);
+  } else if (features_future.valid()) {
     features = features_future.get();
   } else {
     features = extractor_.Extract(frame.gray, frame.depth, camera_);
@@ -320,6 +382,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const cv::Mat& nex
   record.features_total = static_cast<int>(split.kept.size() + split.removed.size());
   record.features_kept = static_cast<int>(split.kept.size());
   record.features_removed = static_cast<int>(split.removed.size());
+
+  // Look-ahead: frame t+1's features and mask start on the second core while this one tracks.
+  if (next != nullptr && LooksAhead()) StartLookAhead(frame.gray, *next);
 
   // 4. Pose from the static features, local map, local BA.
   const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);

@@ -5,6 +5,7 @@
 // it is the baseline, identical otherwise.
 
 #include <deque>
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -12,8 +13,9 @@
 
 #include "core/camera.h"
 #include "core/image_area.h"
-#include "dynamic_mask/motion_compensation.h"
 #include "dataset/tum_dataset.h"
+#include "dynamic_mask/dynamic_mask_detector.h"
+#include "dynamic_mask/motion_compensation.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_extractor.h"
 #include "odometry/frame_record.h"
@@ -60,23 +62,48 @@ class OdometryPipeline {
   // all). The config must have passed Check().
   OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area = {});
 
-  // Processes frame t and returns its record (pose always set). `next_gray` is frame t+1,
-  // used only with backward detection "triplet" (empty at the end of the sequence).
+  // Processes frame t and returns its record (pose always set). `next` is frame t+1 (null at the
+  // end of the sequence or when it is not loaded yet): backward detection "triplet" needs it, and
+  // with run.lookahead its features and mask are computed beside frame t's tracking, to be taken
+  // by the next call when it is handed that same frame (same pixels in memory). The results do
+  // not depend on it.
   // `truth_mask` is frame t's ground-truth mask (CV_8UC1, non-zero = dynamic), used only with
   // mask source "ground_truth" (NeedsTruthMask), where it must not be empty. Fills `debug`
   // when given. Throws InputError when a needed truth mask is missing or of the wrong type or size.
-  FrameRecord Process(const RgbdFrame& frame, const cv::Mat& next_gray, const cv::Mat& truth_mask = cv::Mat(),
+  FrameRecord Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask = cv::Mat(),
                       DebugPanels* debug = nullptr);
 
   // True when Process wants frame t+1 (backward detection "triplet").
   bool NeedsNextFrame() const;
   // True when Process wants frame t's ground-truth mask (mask source "ground_truth").
   bool NeedsTruthMask() const;
+  // True when Process uses frame t+1, given, to look ahead (run.lookahead, the detector's reverse
+  // pair or the baseline; not with the triplet or ground-truth masks, which need frame t's state).
+  bool LooksAhead() const;
 
   // The dynamic mask of the last processed frame (empty when none was computed).
   const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
+  // What frame t's images alone give: its ORB features and (the detector, reverse pair) its mask.
+  struct ImageStages {
+    bool has_features = false;
+    FrameFeatures features;
+    double features_ms = 0.0;
+    bool has_mask = false;
+    DynamicMaskResult mask;
+    TrackingPyramid pyramid;  // frame t's KLT pyramid (the next frame's previous one)
+    double mask_ms = 0.0;
+  };
+  // The features of `frame` and, with the mask on, its mask against frame t-1 (`previous_gray`,
+  // `previous_pyramid`), the two on two threads. Uses extractor_ and reads only the options.
+  ImageStages ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                 const TrackingPyramid& previous_pyramid);
+  // Starts ComputeImageStages of `next` against frame t (`gray`, previous_pyramid_) on a thread.
+  void StartLookAhead(const cv::Mat& gray, const RgbdFrame& next);
+  // The look-ahead's result when it was started for `frame`; else waits for it and returns none.
+  ImageStages TakeLookAhead(const RgbdFrame& frame);
+
   // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
   // (empty when the frame has no depth or was not tracked).
   // With `explained`, also where the map explains the frame's depth (MapOcclusionMask).
@@ -115,6 +142,10 @@ class OdometryPipeline {
   cv::Mat map_explained_;   // depth_trim: where frame t-1's depth is explained by the static map
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
   cv::Mat kept_occlusion_;  // map_occlusion.seeded: the regions of it frame t-1 kept (seeds for frame t)
+  // Look-ahead: the job computing the image stages of the frame whose grey image is ahead_gray_.
+  // Declared last, so that it is destroyed (its job waited for) before what the job uses.
+  cv::Mat ahead_gray_;
+  std::future<ImageStages> ahead_;
 };
 
 }  // namespace dynvo

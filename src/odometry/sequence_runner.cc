@@ -142,10 +142,10 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   RunTally tally;
   const auto wall_start = std::chrono::steady_clock::now();
 
-  auto process = [&](LoadedFrame& current, const cv::Mat& next_gray) {
+  auto process = [&](LoadedFrame& current, const RgbdFrame* next) {
     DebugPanels panels;
     const bool debug = debug_frames.count(current.frame.index) != 0;
-    FrameRecord record = pipeline.Process(current.frame, next_gray, current.truth_mask,
+    FrameRecord record = pipeline.Process(current.frame, next, current.truth_mask,
                                           debug ? &panels : nullptr);
     record.times.load_ms = current.load_ms;
     if (evaluate_masks) record.mask_quality = CompareMasks(pipeline.last_mask(), current.truth_mask);
@@ -159,17 +159,27 @@ nlohmann::json RunOdometry(const RunRequest& request) {
 
   std::string failure;
   try {
-    // Triplet backward detection processes frame t once frame t+1 is loaded.
+    // Frame t is processed once frame t+1 is loaded (the triplet's backward detection and the
+    // look-ahead use it); when frame t+1 fails to load, frame t is processed first.
+    const bool hand_next = pipeline.NeedsNextFrame() || pipeline.LooksAhead();
     std::optional<LoadedFrame> pending;
-    while (std::optional<LoadedFrame> loaded = loader.Next()) {
-      if (pipeline.NeedsNextFrame()) {
-        if (pending) process(*pending, loaded->frame.gray);
-        pending = std::move(loaded);
-      } else {
-        process(*loaded, cv::Mat());
+    for (;;) {
+      std::optional<LoadedFrame> loaded;
+      try {
+        loaded = loader.Next();
+      } catch (const InputError&) {
+        if (pending) process(*pending, nullptr);
+        throw;
       }
+      if (!loaded) break;
+      if (!hand_next) {
+        process(*loaded, nullptr);
+        continue;
+      }
+      if (pending) process(*pending, &loaded->frame);
+      pending = std::move(loaded);
     }
-    if (pending) process(*pending, cv::Mat());
+    if (pending) process(*pending, nullptr);
   } catch (const InputError& e) {
     failure = e.what();
   } catch (const std::exception& e) {

@@ -41,7 +41,7 @@ OdometryConfig TruthMaskConfig() {
 
 std::string ProcessError(OdometryPipeline& pipeline, const RgbdFrame& frame, const cv::Mat& mask) {
   try {
-    pipeline.Process(frame, cv::Mat(), mask);
+    pipeline.Process(frame, nullptr, mask);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -54,7 +54,7 @@ TEST(OdometryPipeline, GroundTruthMaskRemovesTheFeaturesOnIt) {
   EXPECT_FALSE(pipeline.NeedsNextFrame());
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask.colRange(0, 320).setTo(255);  // left half "dynamic"
-  const FrameRecord record = pipeline.Process(TexturedFrame(), cv::Mat(), mask);
+  const FrameRecord record = pipeline.Process(TexturedFrame(), nullptr, mask);
   EXPECT_TRUE(record.mask_ok);
   EXPECT_DOUBLE_EQ(record.dynamic_ratio, 0.5);
   ASSERT_GT(record.features_total, 100);
@@ -68,14 +68,14 @@ TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask.colRange(0, 320).setTo(255);  // left half "dynamic"
   OdometryPipeline plain(Camera{}, TruthMaskConfig());
-  const FrameRecord without = plain.Process(TexturedFrame(), cv::Mat(), mask);
+  const FrameRecord without = plain.Process(TexturedFrame(), nullptr, mask);
 
   OdometryConfig config = TruthMaskConfig();
   config.features.refill_outside_mask = true;
   config.features.refill_margin_px = 10;
   OdometryPipeline pipeline(Camera{}, config);
   DebugPanels debug;
-  const FrameRecord record = pipeline.Process(TexturedFrame(), cv::Mat(), mask, &debug);
+  const FrameRecord record = pipeline.Process(TexturedFrame(), nullptr, mask, &debug);
   // The mask removes the same features as without the refill...
   EXPECT_EQ(record.features_removed, without.features_removed);
   // ...but the kept ones are detected again on the right half: the whole budget (the random
@@ -139,9 +139,9 @@ TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
     OdometryConfig c = config;
     c.features.refill_from_background = from_background;
     OdometryPipeline pipeline(Camera{}, c);
-    pipeline.Process(frames[0], cv::Mat(), cv::Mat::zeros(480, 640, CV_8UC1));
+    pipeline.Process(frames[0], nullptr, cv::Mat::zeros(480, 640, CV_8UC1));
     DebugPanels debug;
-    pipeline.Process(frames[1], cv::Mat(), mask, &debug);
+    pipeline.Process(frames[1], nullptr, mask, &debug);
     return debug;
   };
   EXPECT_TRUE(run(false).background.empty());
@@ -165,12 +165,12 @@ TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask.colRange(0, 320).setTo(255);
   RgbdFrame frame = TexturedFrame();
-  pipeline.Process(frame, cv::Mat(), mask);  // seeds the map from the right half
+  pipeline.Process(frame, nullptr, mask);  // seeds the map from the right half
   // The same view again: the kept features match the map they were seeded into.
   frame.index += 1;
   frame.stamp += 0.033;
   DebugPanels debug;
-  const FrameRecord record = pipeline.Process(frame, cv::Mat(), mask, &debug);
+  const FrameRecord record = pipeline.Process(frame, nullptr, mask, &debug);
   ASSERT_EQ(static_cast<int>(debug.feature_list.size()), record.features_total);
   int kept = 0, removed = 0, inliers = 0, removed_inliers = 0;
   for (const DebugFeature& f : debug.feature_list) {
@@ -203,6 +203,46 @@ TEST(OdometryPipeline, MissingOrMalformedGroundTruthMaskNamesTheFrame) {
   OdometryPipeline detector(Camera{}, OdometryConfig{});
   EXPECT_FALSE(detector.NeedsTruthMask());
   EXPECT_EQ(ProcessError(detector, frame, cv::Mat()), "");
+}
+
+TEST(OdometryPipeline, ALookAheadForAnotherFrameIsDropped) {
+  // A camera panning 6 px per frame over a textured wall at 2 m. Frame 0 is processed with frame
+  // 1 handed as the next one, then frame 2 comes instead: it must be processed as if nothing had
+  // been computed ahead (the same as a pipeline that never looked ahead).
+  cv::Mat wall(480, 700, CV_8UC1);
+  cv::RNG(5).fill(wall, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(wall, wall, cv::Size(), 1.5);
+  RgbdFrame frames[3] = {TexturedFrame(), TexturedFrame(), TexturedFrame()};
+  for (int i = 0; i < 3; ++i) {
+    frames[i].index = i;
+    frames[i].stamp = 0.033 * i;
+    frames[i].gray = wall(cv::Rect(6 * i, 0, 640, 480)).clone();
+  }
+  OdometryConfig config;  // the detector's reverse pair: it looks ahead
+  OdometryPipeline ahead(Camera{}, config), plain(Camera{}, config);
+  ASSERT_TRUE(ahead.LooksAhead());
+  ahead.Process(frames[0], &frames[1]);
+  plain.Process(frames[0], nullptr);
+  const FrameRecord skipped = ahead.Process(frames[2], nullptr);
+  const FrameRecord expected = plain.Process(frames[2], nullptr);
+  EXPECT_TRUE(skipped.world_from_camera.matrix() == expected.world_from_camera.matrix());
+  EXPECT_EQ(skipped.features_total, expected.features_total);
+  EXPECT_EQ(skipped.mask_ok, expected.mask_ok);
+  EXPECT_EQ(skipped.dynamic_ratio, expected.dynamic_ratio);
+  EXPECT_GT(expected.world_from_camera.translation().norm(), 0.0);  // frame 2 was tracked, not seeded
+  // Handed the frame it looked ahead for, the pipeline gives what it gives in turn.
+  OdometryPipeline ahead2(Camera{}, config), plain2(Camera{}, config);
+  ahead2.Process(frames[0], &frames[1]);
+  plain2.Process(frames[0], nullptr);
+  EXPECT_TRUE(ahead2.Process(frames[1], nullptr).world_from_camera.matrix() ==
+      plain2.Process(frames[1], nullptr).world_from_camera.matrix());
+  // Ground-truth masks and the triplet need frame t's own state: they do not look ahead.
+  EXPECT_FALSE(OdometryPipeline(Camera{}, TruthMaskConfig()).LooksAhead());
+  config.dynamic_mask.backward = BackwardMode::kTriplet;
+  EXPECT_FALSE(OdometryPipeline(Camera{}, config).LooksAhead());
+  config.dynamic_mask.backward = BackwardMode::kReversePair;
+  config.run.lookahead = false;
+  EXPECT_FALSE(OdometryPipeline(Camera{}, config).LooksAhead());
 }
 
 }  // namespace
