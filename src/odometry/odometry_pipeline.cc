@@ -113,9 +113,9 @@ bool OdometryPipeline::NeedsTruthMask() const {
   return config_.dynamic_mask_enabled && config_.dynamic_mask_source == MaskSource::kGroundTruth;
 }
 
-bool OdometryPipeline::LooksAhead() const {
-  return config_.run.lookahead && !NeedsTruthMask() && !NeedsNextFrame();
-}
+bool OdometryPipeline::ImageStagesStandAlone() const { return !NeedsTruthMask() && !NeedsNextFrame(); }
+
+bool OdometryPipeline::LooksAhead() const { return config_.run.lookahead && ImageStagesStandAlone(); }
 
 OdometryPipeline::ImageStages OdometryPipeline::ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
                                                                  const TrackingPyramid& previous_pyramid) {
@@ -174,11 +174,15 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   record.index = frame.index;
   record.stamp = frame.stamp;
   const cv::Mat next_gray = next ? next->gray : cv::Mat();
-  // Frame t's features and mask, when the last call computed them (look-ahead).
+  // 1-2. Frame t's features and (the detector's reverse pair, or the baseline) its mask: computed
+  // during the last call (look-ahead), or now.
   ImageStages stages = TakeLookAhead(frame);
+  if (!stages.has_features && ImageStagesStandAlone() &&
+      (!config_.dynamic_mask_enabled || !previous_gray_.empty()))
+    stages = ComputeImageStages(frame, previous_gray_, previous_pyramid_);
 
-  // 2. Features, on a second thread while this one computes the mask: extraction does not
-  // depend on the mask, so the result is the same as in sequence.
+  // 2. (Triplet, ground-truth masks.) Features, on a second thread while this one computes the
+  // mask: extraction does not depend on the mask, so the result is the same as in sequence.
   std::future<FrameFeatures> features_future;
   double features_ms = stages.features_ms;
   if (!stages.has_features && config_.dynamic_mask_enabled && !previous_gray_.empty()) {
@@ -226,7 +230,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
       mask = std::move(stages.mask);
       previous_pyramid_ = stages.pyramid;
       record.times.dynamic_mask_ms = stages.mask_ms;
-    } else {
+    } else {  // the triplet
       const auto t = Clock::now();
       DynamicMaskInput input;
       input.previous_gray = previous_gray_;

@@ -85,6 +85,9 @@ class OdometryPipeline {
   const cv::Mat& last_mask() const { return last_mask_; }
 
  private:
+  // True when frame t's features and mask need nothing but frames t-1 and t (not the triplet's
+  // frame t+1, not a ground-truth mask): ComputeImageStages gives them, in turn or ahead.
+  bool ImageStagesStandAlone() const;
   // What frame t's images alone give: its ORB features and (the detector, reverse pair) its mask.
   struct ImageStages {
     bool has_features = false;
