@@ -235,6 +235,45 @@ TEST_F(EndToEnd, LookingAheadChangesNoResult) {
   }
 }
 
+TEST_F(EndToEnd, AFrameThatFailsToLoadKeepsEveryFrameBeforeIt) {
+  // A copy of the sequence whose 61st RGB image is not a PNG: the run ends there with the file
+  // named, and frames 0-59 keep their poses and rows, also when frame 59 waited for frame 60
+  // (look-ahead) and with the triplet, which waits for it too.
+  const std::filesystem::path copy = dir_->path() / "corrupt_sequence";
+  std::filesystem::copy(sequence_, copy, std::filesystem::copy_options::recursive);
+  std::istringstream rgb_list(ReadTextFile((copy / "rgb.txt").string()));
+  std::string line, bad_image;
+  for (int frame = 0; std::getline(rgb_list, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (frame++ == 60) bad_image = line.substr(line.find(' ') + 1);
+  }
+  ASSERT_FALSE(bad_image.empty());
+  std::ofstream((copy / bad_image).string(), std::ios::trunc) << "not a png";
+  const std::vector<std::vector<std::string>> variants = {
+      {}, {"run.lookahead=false"}, {"dynamic_mask.backward=\"triplet\""}};
+  for (size_t v = 0; v < variants.size(); ++v) {
+    RunRequest request;
+    request.dataset = copy.string();
+    request.config_path = ConfigPath("paper.json");
+    request.overrides = variants[v];
+    request.out_dir = (dir_->path() / ("corrupt_" + std::to_string(v))).string();
+    request.quiet = true;
+    try {
+      RunOdometry(request);
+      ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad_image), std::string::npos) << e.what();
+    }
+    const std::string trajectory = ReadTextFile(request.out_dir + "/trajectory.txt");
+    EXPECT_EQ(std::count(trajectory.begin(), trajectory.end(), '\n'), 60);
+    const std::string timing = ReadTextFile(request.out_dir + "/timing.csv");
+    EXPECT_EQ(std::count(timing.begin(), timing.end(), '\n'), 61);  // the header and 60 rows
+    const nlohmann::json report = nlohmann::json::parse(ReadTextFile(request.out_dir + "/run.json"));
+    EXPECT_EQ(report["status"], "failed");
+    EXPECT_EQ(report["counts"]["frames"], 60);
+  }
+}
+
 TEST_F(EndToEnd, RefusesToOverwriteWithoutForce) {
   const std::string out = Run("baseline.json", "twice");
   RunRequest again;
