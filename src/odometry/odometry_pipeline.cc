@@ -271,7 +271,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   }
 
   // What frame t-1 left for the trim and the background fill, carried into frame t by the
-  // homography on the second core (idle once the features are out) while steps 1b-1c run here.
+  // homography on the second core (free until the look-ahead starts) while steps 1b-1c run here.
   std::future<CarriedState> carried_future;
   if (has_current_from_previous)
     carried_future = std::async(std::launch::async, [this, &frame, &current_from_previous] {
