@@ -273,7 +273,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   // What frame t-1 left for the trim and the background fill, carried into frame t by the
   // homography on the second core (free until the look-ahead starts) while steps 1b-1c run here.
   std::future<CarriedState> carried_future;
-  if (has_current_from_previous)
+  const bool something_to_carry = (config_.features.refill_from_background && !background_gray_.empty()) ||
+                                   (config_.depth_trim.enabled && !map_explained_.empty());
+  if (has_current_from_previous && something_to_carry)
     carried_future = std::async(std::launch::async, [this, &frame, &current_from_previous] {
       return CarryIntoFrame(current_from_previous, frame.gray.size());
     });
