@@ -21,15 +21,10 @@ constexpr int kBackgroundFillMarginPx = 1;
 // (x_t ~ H x_t-1). `previous_background` is frame t-1's result of this function (or frame t-1 itself
 // when it had no mask), so what was seen behind a moving region in any earlier frame is carried on.
 // Masked pixels the warp has no source for, or outside `area`, keep frame t's value. An empty mask
-// returns `current_gray` itself; an empty `previous_background` a copy of it.
+// returns `current_gray` itself; an empty `previous_background` a copy of it. Only the grown mask's
+// bounding box is warped (the same pixels as a warp of the whole frame).
 cv::Mat FillMaskFromBackground(const cv::Mat& current_gray, const cv::Mat& mask, const cv::Mat& previous_background,
                                const Eigen::Matrix3d& current_from_previous, int margin_px,
                                const ImageArea& area = {});
-
-// The same fill with the warp done beforehand (so that a caller can warp while it computes the
-// mask): `carried` is CompensateMotion(previous_background, current_from_previous, size, area), or
-// empty images when there is no previous background. Same result as FillMaskFromBackground.
-cv::Mat FillMaskFromCarriedBackground(const cv::Mat& current_gray, const cv::Mat& mask, const CompensatedImage& carried,
-                                      int margin_px);
 
 }  // namespace dynvo

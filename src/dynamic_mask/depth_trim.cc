@@ -37,11 +37,14 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
   if (explained.type() != CV_8UC1 || explained.size() != depth.size())
     throw InputError("TrimMaskToNearSurface: explained must be CV_8UC1 of the depth image's size");
   cv::Mat trimmed = (mask != 0);
-  cv::Mat labels, stats, centroids;
-  const int regions = cv::connectedComponentsWithStats(trimmed, labels, stats, centroids, 8, CV_32S);
+  // Every region lies inside the bounding box of the mask: label that box alone.
+  const cv::Rect mask_box = cv::boundingRect(trimmed);
+  if (mask_box.area() == 0) return trimmed;
+  cv::Mat labels, stats, centroids;  // of mask_box's pixels
+  const int regions = cv::connectedComponentsWithStats(trimmed(mask_box), labels, stats, centroids, 8, CV_32S);
   for (int r = 1; r < regions; ++r) {
     if (stats.at<int>(r, cv::CC_STAT_AREA) < options.min_region_px) continue;
-    const cv::Rect box(stats.at<int>(r, cv::CC_STAT_LEFT), stats.at<int>(r, cv::CC_STAT_TOP),
+    const cv::Rect box(mask_box.x + stats.at<int>(r, cv::CC_STAT_LEFT), mask_box.y + stats.at<int>(r, cv::CC_STAT_TOP),
                        stats.at<int>(r, cv::CC_STAT_WIDTH), stats.at<int>(r, cv::CC_STAT_HEIGHT));
     // The region's log depths, quantised to kBins levels over their range; Otsu splits them.
     cv::Mat log_depth(box.size(), CV_32FC1, cv::Scalar(0.0f));
@@ -50,7 +53,7 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
     for (int y = 0; y < box.height; ++y)
       for (int x = 0; x < box.width; ++x) {
         const float z = depth.at<float>(box.y + y, box.x + x);
-        if (labels.at<int>(box.y + y, box.x + x) != r || z <= 0.0f) continue;
+        if (labels.at<int>(box.y - mask_box.y + y, box.x - mask_box.x + x) != r || z <= 0.0f) continue;
         const float l = std::log(z);
         log_depth.at<float>(y, x) = l;
         in_region.at<uint8_t>(y, x) = 255;

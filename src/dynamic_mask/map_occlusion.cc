@@ -70,12 +70,17 @@ cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d
     const uint8_t* row_decides = decides.ptr<uint8_t>(y / cell);
     uint8_t* m = mask.ptr<uint8_t>(y);
     uint8_t* e = explained ? explained->ptr<uint8_t>(y) : nullptr;
-    for (int x = 0; x < depth.cols; ++x) {
-      if (d[x] <= 0.0f || !row_decides[x / cell]) continue;
-      if (d[x] < row_bar[x / cell]) {
-        m[x] = 255;
-      } else if (e) {
-        e[x] = 255;
+    for (int gx = 0; gx < grid_cols; ++gx) {  // one cell's span of the row: one bar
+      if (!row_decides[gx]) continue;
+      const float cell_bar = row_bar[gx];
+      const int x_end = std::min(depth.cols, (gx + 1) * cell);
+      for (int x = gx * cell; x < x_end; ++x) {
+        if (d[x] <= 0.0f) continue;
+        if (d[x] < cell_bar) {
+          m[x] = 255;
+        } else if (e) {
+          e[x] = 255;
+        }
       }
     }
   }

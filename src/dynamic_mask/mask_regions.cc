@@ -29,20 +29,25 @@ cv::Mat RegionsTouching(const cv::Mat& regions, const cv::Mat& seeds) {
   if (seeds.empty() || regions.empty()) return kept;
   if (seeds.type() != CV_8UC1 || seeds.size() != regions.size())
     throw InputError("RegionsTouching needs CV_8UC1 seeds of the regions' size");
+  // Every region lies inside the bounding box of the non-zero pixels: label that box alone.
+  const cv::Rect box = cv::boundingRect(regions);
+  if (box.area() == 0) return kept;
+  const cv::Mat regions_box = regions(box), seeds_box = seeds(box);
   cv::Mat labels;
-  const int count = cv::connectedComponents(regions, labels, 8, CV_32S);
+  const int count = cv::connectedComponents(regions_box, labels, 8, CV_32S);
   std::vector<uint8_t> touched(static_cast<size_t>(count), 0);
-  for (int y = 0; y < regions.rows; ++y) {
-    const uint8_t* region = regions.ptr<uint8_t>(y);
-    const uint8_t* seed = seeds.ptr<uint8_t>(y);
+  for (int y = 0; y < box.height; ++y) {
+    const uint8_t* region = regions_box.ptr<uint8_t>(y);
+    const uint8_t* seed = seeds_box.ptr<uint8_t>(y);
     const int* label = labels.ptr<int>(y);
-    for (int x = 0; x < regions.cols; ++x)
+    for (int x = 0; x < box.width; ++x)
       if (region[x] && seed[x]) touched[static_cast<size_t>(label[x])] = 1;
   }
-  for (int y = 0; y < regions.rows; ++y) {
+  cv::Mat kept_box = kept(box);
+  for (int y = 0; y < box.height; ++y) {
     const int* label = labels.ptr<int>(y);
-    uint8_t* out = kept.ptr<uint8_t>(y);
-    for (int x = 0; x < regions.cols; ++x)
+    uint8_t* out = kept_box.ptr<uint8_t>(y);
+    for (int x = 0; x < box.width; ++x)
       if (label[x] > 0 && touched[static_cast<size_t>(label[x])]) out[x] = 255;
   }
   return kept;

@@ -120,6 +120,25 @@ void CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_
   ValidRegion(target_from_source, source.size(), size, &out->valid, area);
 }
 
+void CompensateMotionInBox(const cv::Mat& source, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
+                           const cv::Rect& box, CompensatedImage* out, const ImageArea& area) {
+  if (source.empty()) throw InputError("CompensateMotionInBox: source image is empty");
+  if (size.width <= 0 || size.height <= 0) throw InputError("CompensateMotionInBox: target size must be positive");
+  if (box.area() <= 0 || (box & cv::Rect(cv::Point(0, 0), size)) != box)
+    throw InputError("CompensateMotionInBox: the box must be non-empty and inside the target");
+  if (!target_from_source.allFinite()) throw InputError("CompensateMotionInBox: homography is not finite");
+  // The box's pixel (u, v) is the target pixel (u + x, v + y).
+  Eigen::Matrix3d box_from_target = Eigen::Matrix3d::Identity();
+  box_from_target(0, 2) = -box.x;
+  box_from_target(1, 2) = -box.y;
+  cv::warpPerspective(source, out->image, ToCv(box_from_target * target_from_source), box.size(), cv::INTER_LINEAR,
+                      cv::BORDER_REPLICATE);
+  // The valid region is a filled polygon: cheap at full size, then cut to the box.
+  cv::Mat valid;
+  ValidRegion(target_from_source, source.size(), size, &valid, area);
+  out->valid = valid(box);
+}
+
 CompensatedImage CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source,
                                   const cv::Size& size, const ImageArea& area) {
   CompensatedImage out;

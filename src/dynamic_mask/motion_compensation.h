@@ -25,6 +25,12 @@ void CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_
 CompensatedImage CompensateMotion(const cv::Mat& source, const Eigen::Matrix3d& target_from_source,
                                   const cv::Size& size, const ImageArea& area = {});
 
+// CompensateMotion over the target pixels of `box` (inside `size`) alone: `out`'s images are
+// box.size(), and pixel (u, v) of them is pixel (u + box.x, v + box.y) of CompensateMotion's.
+// For a caller that needs a small part of the target: the warp's cost scales with the box.
+void CompensateMotionInBox(const cv::Mat& source, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
+                           const cv::Rect& box, CompensatedImage* out, const ImageArea& area = {});
+
 // A CV_8UC1 binary `mask` warped by `target_from_source` into an image of `size` (nearest
 // neighbour, 0 where there is no source). The same result as a full cv::warpPerspective, computed
 // only over the part of the target that the mask's non-zero pixels can reach.

@@ -270,14 +270,12 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
     }
   }
 
-  // What frame t-1 left for the trim and the background fill, carried into frame t by the
-  // homography on the second core (free until the look-ahead starts) while steps 1b-1c run here.
-  std::future<CarriedState> carried_future;
-  const bool something_to_carry = (config_.features.refill_from_background && !background_gray_.empty()) ||
-                                   (config_.depth_trim.enabled && !map_explained_.empty());
-  if (has_current_from_previous && something_to_carry)
-    carried_future = std::async(std::launch::async, [this, &frame, &current_from_previous] {
-      return CarryIntoFrame(current_from_previous, frame.gray.size());
+  // Frame t-1's map test for the trim, carried into frame t by the homography on the second core
+  // (free until the look-ahead starts) while steps 1b-1c run here. It reads map_explained_ alone.
+  std::future<cv::Mat> explained_future;
+  if (has_current_from_previous && config_.depth_trim.enabled && !map_explained_.empty())
+    explained_future = std::async(std::launch::async, [this, &current_from_previous] {
+      return CarriedIntoFrame(map_explained_, current_from_previous);
     });
 
   // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
@@ -328,15 +326,15 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
   const auto wait_start = Clock::now();
-  const CarriedState carried = carried_future.valid() ? carried_future.get() : CarriedState{};
+  const cv::Mat explained = explained_future.valid() ? explained_future.get() : cv::Mat();
   record.times.dynamic_mask_ms += MsSince(wait_start);
   // 1d. Trim (depth_trim): each region of the mask cut to its near surface where the static map
   // explains the rest (frame t-1's map test, carried into frame t by the homography), so that the
   // background the dilations spilled over around a person gives its features back.
-  if (!carried.map_explained.empty() && !last_mask_.empty() && !frame.depth.empty() &&
+  if (!explained.empty() && !last_mask_.empty() && !frame.depth.empty() &&
       cv::countNonZero(last_mask_) > 0) {
     const auto t = Clock::now();
-    last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth, carried.map_explained, config_.depth_trim);
+    last_mask_ = TrimMaskToNearSurface(last_mask_, frame.depth, explained, config_.depth_trim);
     mask_extended = true;
     record.times.dynamic_mask_ms += MsSince(t);
   }
@@ -370,7 +368,8 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   if (config_.features.refill_from_background) {
     t = Clock::now();
     if (!last_mask_.empty() && has_current_from_previous)
-      described = FillMaskFromCarriedBackground(frame.gray, last_mask_, carried.background, kBackgroundFillMarginPx);
+      described = FillMaskFromBackground(frame.gray, last_mask_, background_gray_, current_from_previous,
+                                         kBackgroundFillMarginPx, image_area_);
     background_gray_ = described;
     if (debug) debug->background = described;
     features_ms += MsSince(t);
@@ -440,16 +439,6 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   previous_gray_ = frame.gray;
   record.times.processing_ms = MsSince(start);
   return record;
-}
-
-OdometryPipeline::CarriedState OdometryPipeline::CarryIntoFrame(const Eigen::Matrix3d& current_from_previous,
-                                                               const cv::Size& size) const {
-  CarriedState carried;
-  if (config_.features.refill_from_background && !background_gray_.empty())
-    CompensateMotion(background_gray_, current_from_previous, size, &carried.background, image_area_);
-  if (config_.depth_trim.enabled && !map_explained_.empty())
-    carried.map_explained = CarriedIntoFrame(map_explained_, current_from_previous);
-  return carried;
 }
 
 bool OdometryPipeline::MapOcclusionPossible(const RgbdFrame& frame, const TrackingResult& tracking) {

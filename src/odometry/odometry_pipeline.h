@@ -114,14 +114,6 @@ class OdometryPipeline {
   // True when MapOcclusionOf gives a mask for this frame: it has depth and was tracked.
   static bool MapOcclusionPossible(const RgbdFrame& frame, const TrackingResult& tracking);
 
-  // What the last frame left for this one, carried into it by the ego-motion homography.
-  struct CarriedState {
-    CompensatedImage background;  // refill_from_background: background_gray_ warped (empty: none)
-    cv::Mat map_explained;        // depth_trim: map_explained_ warped (empty: none)
-  };
-  // Reads background_gray_ and map_explained_ only, so it may run beside steps 1b-1c.
-  CarriedState CarryIntoFrame(const Eigen::Matrix3d& current_from_previous, const cv::Size& size) const;
-
   Camera camera_;
   OdometryConfig config_;
   ImageArea image_area_;

@@ -4,6 +4,7 @@
 #include "dynamic_mask/background_fill.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 #include "ego_motion/synthetic_frames.h"
@@ -101,19 +102,25 @@ TEST_F(BackgroundFill, EmptyMaskOrNoBackgroundKeepsTheFrame) {
   EXPECT_EQ(CountDifferent(FillMaskFromBackground(moving, mask, cv::Mat(), PanOneFrame(), 1), moving), 0);
 }
 
-TEST_F(BackgroundFill, AWarpDoneBeforehandFillsTheSame) {
-  const cv::Rect box(100, 60, 50, 80);
-  cv::Mat mask, previous_mask;
-  const cv::Mat current = WithMover(WallView(wall, 1), box, &mask);
-  const cv::Mat previous = WithMover(WallView(wall, 0), cv::Rect(20, 30, 40, 40), &previous_mask);
-  const CompensatedImage carried = CompensateMotion(previous, PanOneFrame(), kFrame);
-  const cv::Mat filled = FillMaskFromCarriedBackground(current, mask, carried, 2);
-  EXPECT_EQ(CountDifferent(filled, FillMaskFromBackground(current, mask, previous, PanOneFrame(), 2)), 0);
-  EXPECT_GT(CountDifferent(filled, current), box.area() / 2);  // the box was filled
-  // No previous background: a copy of the frame; a carried image of another size is refused.
-  EXPECT_EQ(CountDifferent(FillMaskFromCarriedBackground(current, mask, CompensatedImage{}, 2), current), 0);
-  const CompensatedImage small = CompensateMotion(previous, PanOneFrame(), cv::Size(40, 30));
-  EXPECT_THROW(FillMaskFromCarriedBackground(current, mask, small, 2), InputError);
+TEST_F(BackgroundFill, FillsAsAWarpOfTheWholeFrameWould) {
+  // A sub-pixel rotation (bilinear samples, not copies) and two movers far apart, so that the
+  // warped box is most of the frame and its edge pixels are interpolated.
+  const Eigen::Matrix3d h = test::SmallMotion(0.01, -6.3, 1.7, 0.0, 0.0);
+  cv::Mat mask_a, mask_b;
+  const cv::Mat current = WithMover(WithMover(WallView(wall, 1), cv::Rect(10, 15, 30, 40), &mask_a),
+                                    cv::Rect(250, 170, 40, 50), &mask_b);
+  const cv::Mat mask = mask_a | mask_b;
+  const cv::Mat previous = WallView(wall, 0);
+  const int margin = 2;
+  const cv::Mat filled = FillMaskFromBackground(current, mask, previous, h, margin);
+  // The fill spelled out with a warp of the whole frame.
+  const CompensatedImage whole = CompensateMotion(previous, h, kFrame);
+  cv::Mat region = mask.clone();
+  cv::dilate(region, region, cv::Mat::ones(2 * margin + 1, 2 * margin + 1, CV_8UC1));
+  cv::Mat expected = current.clone();
+  whole.image.copyTo(expected, region & whole.valid);
+  EXPECT_EQ(CountDifferent(filled, expected), 0);
+  EXPECT_GT(CountDifferent(filled, current), (30 * 40 + 40 * 50) / 2);  // both movers were filled
 }
 
 TEST_F(BackgroundFill, BadInputsThrow) {

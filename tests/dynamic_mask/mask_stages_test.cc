@@ -105,6 +105,30 @@ TEST(WarpBinaryMask, EqualsAFullNearestWarp) {
   EXPECT_THROW(WarpBinaryMask(cv::Mat(), Eigen::Matrix3d::Identity(), kImage, &out), InputError);
 }
 
+TEST(CompensateMotion, InABoxEqualsTheWholeWarpOverTheBox) {
+  const cv::Mat source = test::RandomTexture(kImage, 5);
+  const ImageArea area = {{30, 20}, {610, 25}, {620, 300}, {600, 460}, {25, 450}, {15, 200}};
+  cv::RNG rng(23);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Matrix3d h =
+        test::SmallMotion(rng.gaussian(0.03), rng.gaussian(15.0), rng.gaussian(15.0), rng.gaussian(2e-5), 0.0);
+    const int x = rng.uniform(0, 600), y = rng.uniform(0, 440);
+    const cv::Rect box(x, y, rng.uniform(1, kImage.width - x + 1), rng.uniform(1, kImage.height - y + 1));
+    const ImageArea& used = trial % 2 ? area : ImageArea{};
+    const CompensatedImage whole = CompensateMotion(source, h, kImage, used);
+    CompensatedImage part;
+    CompensateMotionInBox(source, h, kImage, box, &part, used);
+    ASSERT_EQ(part.image.size(), box.size());
+    ASSERT_EQ(CountDifferent(part.image, whole.image(box)), 0) << "trial " << trial;
+    ASSERT_EQ(CountDifferent(part.valid, whole.valid(box)), 0) << "trial " << trial;
+  }
+  CompensatedImage out;
+  EXPECT_THROW(CompensateMotionInBox(source, Eigen::Matrix3d::Identity(), kImage, cv::Rect(600, 0, 50, 10), &out),
+               InputError);  // reaches past the target
+  EXPECT_THROW(CompensateMotionInBox(source, Eigen::Matrix3d::Identity(), kImage, cv::Rect(0, 0, 0, 10), &out),
+               InputError);
+}
+
 TEST(AbsoluteDifference, IsZeroOutsideValid) {
   cv::Mat a(4, 4, CV_8UC1, cv::Scalar(100)), b(4, 4, CV_8UC1, cv::Scalar(130)), valid(4, 4, CV_8UC1, cv::Scalar(255));
   b.at<uint8_t>(1, 1) = 90;
@@ -285,7 +309,9 @@ TEST(MaskRegions, RegionsTouchingKeepsWholeRegionsASeedTouches) {
   EXPECT_EQ(cv::countNonZero(kept(cv::Rect(5, 5, 10, 10))), 100);
   EXPECT_EQ(cv::countNonZero(kept(cv::Rect(30, 5, 10, 10))), 0);
   EXPECT_EQ(cv::countNonZero(kept(cv::Rect(20, 30, 10, 10))), 100);
+  EXPECT_EQ(cv::countNonZero((kept != regions) & kept), 0);  // only region pixels are kept
   EXPECT_EQ(cv::countNonZero(RegionsTouching(regions, cv::Mat())), 0);
+  EXPECT_EQ(cv::countNonZero(RegionsTouching(cv::Mat::zeros(60, 60, CV_8UC1), seeds)), 0);
   EXPECT_THROW(RegionsTouching(regions, cv::Mat::zeros(30, 30, CV_8UC1)), InputError);
   EXPECT_THROW(RegionsTouching(cv::Mat::zeros(60, 60, CV_32FC1), seeds), InputError);
 }
