@@ -50,48 +50,62 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
     cv::Mat log_depth(box.size(), CV_32FC1, cv::Scalar(0.0f));
     cv::Mat in_region = cv::Mat::zeros(box.size(), CV_8UC1);  // region pixels with depth
     float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (int y = 0; y < box.height; ++y)
+    for (int y = 0; y < box.height; ++y) {
+      const float* z = depth.ptr<float>(box.y + y) + box.x;
+      const int* label = labels.ptr<int>(box.y - mask_box.y + y) + (box.x - mask_box.x);
+      float* log_row = log_depth.ptr<float>(y);
+      uint8_t* in_row = in_region.ptr<uint8_t>(y);
       for (int x = 0; x < box.width; ++x) {
-        const float z = depth.at<float>(box.y + y, box.x + x);
-        if (labels.at<int>(box.y - mask_box.y + y, box.x - mask_box.x + x) != r || z <= 0.0f) continue;
-        const float l = std::log(z);
-        log_depth.at<float>(y, x) = l;
-        in_region.at<uint8_t>(y, x) = 255;
+        if (label[x] != r || z[x] <= 0.0f) continue;
+        const float l = std::log(z[x]);
+        log_row[x] = l;
+        in_row[x] = 255;
         low = std::min(low, l);
         high = std::max(high, l);
       }
+    }
     if (!(high > low)) continue;  // no pixel with depth, or one depth
     const float level_width = (high - low) / kBins;
-    cv::Mat level = cv::Mat::zeros(box.size(), CV_8UC1);
-    for (int y = 0; y < box.height; ++y)
+    cv::Mat level = cv::Mat::zeros(box.size(), CV_8UC1);  // 0 outside the region
+    for (int y = 0; y < box.height; ++y) {
+      const float* log_row = log_depth.ptr<float>(y);
+      const uint8_t* in_row = in_region.ptr<uint8_t>(y);
+      uint8_t* level_row = level.ptr<uint8_t>(y);
       for (int x = 0; x < box.width; ++x)
-        if (in_region.at<uint8_t>(y, x))
-          level.at<uint8_t>(y, x) = static_cast<uint8_t>(
-              std::min(kBins - 1, static_cast<int>((log_depth.at<float>(y, x) - low) / level_width)));
-    const int split = OtsuThreshold(level, in_region);  // levels above it are the farther group
+        if (in_row[x])
+          level_row[x] = static_cast<uint8_t>(std::min(kBins - 1, static_cast<int>((log_row[x] - low) / level_width)));
+    }
+    const int split = OtsuThresholdZeroOutsideValid(level, in_region);  // levels above it are the farther group
     // The two groups' mean depths, and how much of the farther group the map explains.
     double near_sum = 0.0, far_sum = 0.0;
     int near_count = 0, far_count = 0, far_explained = 0;
-    for (int y = 0; y < box.height; ++y)
+    for (int y = 0; y < box.height; ++y) {
+      const float* z = depth.ptr<float>(box.y + y) + box.x;
+      const uint8_t* explained_row = explained.ptr<uint8_t>(box.y + y) + box.x;
+      const uint8_t* in_row = in_region.ptr<uint8_t>(y);
+      const uint8_t* level_row = level.ptr<uint8_t>(y);
       for (int x = 0; x < box.width; ++x) {
-        if (!in_region.at<uint8_t>(y, x)) continue;
-        const double z = depth.at<float>(box.y + y, box.x + x);
-        if (level.at<uint8_t>(y, x) > split) {
-          far_sum += z;
+        if (!in_row[x]) continue;
+        if (level_row[x] > split) {
+          far_sum += z[x];
           ++far_count;
-          if (explained.at<uint8_t>(box.y + y, box.x + x)) ++far_explained;
+          if (explained_row[x]) ++far_explained;
         } else {
-          near_sum += z;
+          near_sum += z[x];
           ++near_count;
         }
       }
+    }
     if (near_count == 0 || far_count == 0) continue;
     if (far_sum / far_count <= (1.0 + options.min_gap) * (near_sum / near_count)) continue;
     if (far_explained < options.min_explained * far_count) continue;
-    for (int y = 0; y < box.height; ++y)
+    for (int y = 0; y < box.height; ++y) {
+      const uint8_t* in_row = in_region.ptr<uint8_t>(y);
+      const uint8_t* level_row = level.ptr<uint8_t>(y);
+      uint8_t* out = trimmed.ptr<uint8_t>(box.y + y) + box.x;
       for (int x = 0; x < box.width; ++x)
-        if (in_region.at<uint8_t>(y, x) && level.at<uint8_t>(y, x) > split)
-          trimmed.at<uint8_t>(box.y + y, box.x + x) = 0;
+        if (in_row[x] && level_row[x] > split) out[x] = 0;
+    }
   }
   return trimmed;
 }

@@ -72,6 +72,38 @@ void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_sour
                       cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
+std::vector<cv::Mat> WarpBinaryMasks(const std::vector<cv::Mat>& masks, const Eigen::Matrix3d& target_from_source,
+                                     const cv::Size& size) {
+  if (masks.size() > 8) throw InputError("WarpBinaryMasks: at most 8 masks (one per bit of a byte)");
+  cv::Mat packed;  // bit i = masks[i] non-zero
+  for (size_t i = 0; i < masks.size(); ++i) {
+    const cv::Mat& mask = masks[i];
+    if (mask.empty()) continue;
+    if (mask.type() != CV_8UC1) throw InputError("WarpBinaryMasks needs CV_8UC1 masks");
+    if (packed.empty()) {
+      packed = cv::Mat::zeros(mask.size(), CV_8UC1);
+    } else if (mask.size() != packed.size()) {
+      throw InputError("WarpBinaryMasks needs masks of one size");
+    }
+    const cv::Rect box = cv::boundingRect(mask);  // of the non-zero pixels
+    if (box.area() == 0) continue;
+    cv::Mat packed_box = packed(box), plane;
+    cv::bitwise_and(mask(box) != 0, cv::Scalar(1 << i), plane);
+    cv::bitwise_or(packed_box, plane, packed_box);
+  }
+  std::vector<cv::Mat> warped(masks.size());
+  if (packed.empty()) return warped;
+  cv::Mat packed_warped;
+  WarpBinaryMask(packed, target_from_source, size, &packed_warped);
+  for (size_t i = 0; i < masks.size(); ++i) {
+    if (masks[i].empty()) continue;
+    cv::Mat bit;
+    cv::bitwise_and(packed_warped, cv::Scalar(1 << i), bit);
+    warped[i] = bit != 0;
+  }
+  return warped;
+}
+
 void ValidRegion(const Eigen::Matrix3d& target_from_source, const cv::Size& source_size, const cv::Size& size,
                  cv::Mat* valid, const ImageArea& area) {
   valid->create(size, CV_8UC1);

@@ -2,7 +2,10 @@
 // Motion compensation (paper §1.1): the source frame warped by the ego-motion homography into
 // the target frame's pixel grid, with the pixels that had a source.
 
+#include <vector>
+
 #include <Eigen/Core>
+
 #include <opencv2/core.hpp>
 
 #include "core/image_area.h"
@@ -36,6 +39,12 @@ void CompensateMotionInBox(const cv::Mat& source, const Eigen::Matrix3d& target_
 // only over the part of the target that the mask's non-zero pixels can reach.
 void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
                     cv::Mat* warped);
+
+// WarpBinaryMask of each of up to 8 `masks` (CV_8UC1, same size; empty ones give empty results)
+// with a single warp: each mask is one bit plane of a packed image, which nearest-neighbour
+// sampling carries whole. The same results as warping each alone, with 255 for every non-zero pixel.
+std::vector<cv::Mat> WarpBinaryMasks(const std::vector<cv::Mat>& masks, const Eigen::Matrix3d& target_from_source,
+                                     const cv::Size& size);
 
 // CV_8UC1 mask of `size`: 255 on the pixels x with H^-1 x inside a `source_size` image (H =
 // target_from_source) and inside `area` there, and x inside `area` too (empty `area` = whole images).

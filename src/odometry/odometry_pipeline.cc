@@ -285,12 +285,22 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   // seeds step 1c (and is not computed when there is no occlusion mask to seed).
   const cv::Mat changed_last = std::move(pending_change_);
   pending_change_.release();
+  const bool carry_change = !changed_last.empty() && !NeedsTruthMask() && has_current_from_previous &&
+                            (!config_.depth_change.seeds_only || !occlusion_mask_.empty());
+  const bool carry_occlusion = config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous;
+  // The masks of frame t-1 that steps 1b-1c use, carried into frame t by one warp.
+  auto t = Clock::now();
+  std::vector<cv::Mat> carried_masks;  // change, occlusion, kept occlusion (empty: not carried)
+  if (carry_change || carry_occlusion)
+    carried_masks = WarpBinaryMasks({carry_change ? changed_last : cv::Mat(), carry_occlusion ? occlusion_mask_ : cv::Mat(),
+                                     carry_occlusion && config_.map_occlusion.seeded ? kept_occlusion_ : cv::Mat()},
+                                    current_from_previous, frame.gray.size());
+  record.times.dynamic_mask_ms += MsSince(t);
   cv::Mat change_seeds;
   bool mask_extended = false;  // steps 1b-1d changed the detector's mask
-  if (!changed_last.empty() && !NeedsTruthMask() && has_current_from_previous &&
-      (!config_.depth_change.seeds_only || !occlusion_mask_.empty())) {
-    const auto t = Clock::now();
-    const cv::Mat changed = CarriedIntoFrame(changed_last, current_from_previous);
+  if (carry_change) {
+    t = Clock::now();
+    const cv::Mat& changed = carried_masks[0];
     // A change over much of the image means the poses disagree, not the scene: no mask then.
     if (DynamicRatio(changed) <= config_.depth_change.max_share) {
       if (debug) debug->depth_change = changed;
@@ -308,12 +318,12 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   // the static map, carried into this frame by the detector's homography (one frame of lag).
   // Seeded, only its regions that touch the mask so far, the depth-change seeds or a region kept
   // the frame before.
-  if (config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous) {
-    const auto t = Clock::now();
-    cv::Mat carried = CarriedIntoFrame(occlusion_mask_, current_from_previous);
+  if (carry_occlusion) {
+    t = Clock::now();
+    cv::Mat carried = carried_masks[1];
     if (config_.map_occlusion.seeded) {
       cv::Mat seeds = Union(last_mask_, change_seeds);
-      if (!kept_occlusion_.empty()) seeds = Union(seeds, CarriedIntoFrame(kept_occlusion_, current_from_previous));
+      if (!kept_occlusion_.empty()) seeds = Union(seeds, carried_masks[2]);
       if (debug) debug->map_occlusion_candidates = carried;
       carried = RegionsTouching(carried, seeds);  // no seeds: nothing kept
       kept_occlusion_ = carried;
@@ -343,7 +353,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   if (debug) debug->fused_mask = last_mask_;
 
   // 3. Features minus the dynamic ones.
-  auto t = Clock::now();
+  t = Clock::now();
   FrameFeatures features;
   if (stages.has_features) {
     features = std::move(stages.features);

@@ -105,6 +105,43 @@ TEST(WarpBinaryMask, EqualsAFullNearestWarp) {
   EXPECT_THROW(WarpBinaryMask(cv::Mat(), Eigen::Matrix3d::Identity(), kImage, &out), InputError);
 }
 
+TEST(WarpBinaryMasks, EqualsEachMaskWarpedAlone) {
+  cv::RNG rng(29);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<cv::Mat> masks;
+    for (int m = 0; m < 4; ++m) {
+      if (m == trial % 4) {
+        masks.emplace_back();  // not carried: stays empty
+        continue;
+      }
+      cv::Mat mask = cv::Mat::zeros(kImage, CV_8UC1);
+      for (int b = 0; b < 1 + (trial + m) % 3; ++b)
+        cv::rectangle(mask, cv::Rect(rng.uniform(0, 640), rng.uniform(0, 480), rng.uniform(5, 200), rng.uniform(5, 200)),
+                      cv::Scalar(255), cv::FILLED);
+      masks.push_back(mask);
+    }
+    const Eigen::Matrix3d h =
+        test::SmallMotion(rng.gaussian(0.03), rng.gaussian(15.0), rng.gaussian(15.0), rng.gaussian(2e-5), 0.0);
+    const std::vector<cv::Mat> together = WarpBinaryMasks(masks, h, kImage);
+    ASSERT_EQ(together.size(), masks.size());
+    for (size_t m = 0; m < masks.size(); ++m) {
+      if (masks[m].empty()) {
+        EXPECT_TRUE(together[m].empty());
+        continue;
+      }
+      cv::Mat alone;
+      WarpBinaryMask(masks[m], h, kImage, &alone);
+      ASSERT_EQ(CountDifferent(together[m], alone), 0) << "trial " << trial << ", mask " << m;
+    }
+  }
+  EXPECT_THROW(WarpBinaryMasks(std::vector<cv::Mat>(9, cv::Mat::zeros(kImage, CV_8UC1)), Eigen::Matrix3d::Identity(),
+                               kImage),
+               InputError);
+  EXPECT_THROW(WarpBinaryMasks({cv::Mat::zeros(kImage, CV_8UC1), cv::Mat::zeros(10, 10, CV_8UC1)},
+                               Eigen::Matrix3d::Identity(), kImage),
+               InputError);
+}
+
 TEST(CompensateMotion, InABoxEqualsTheWholeWarpOverTheBox) {
   const cv::Mat source = test::RandomTexture(kImage, 5);
   const ImageArea area = {{30, 20}, {610, 25}, {620, 300}, {600, 460}, {25, 450}, {15, 200}};
