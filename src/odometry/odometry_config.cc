@@ -284,7 +284,7 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   // run
   r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
   r->Bind("run.lookahead", &c->run.lookahead,
-          "compute frame t+1's features and dynamic mask on the second core while frame t is tracked "
+          "compute frame t+1's features and dynamic mask on the second core while frame t is finished "
           "(the same results; not with backward \"triplet\" or ground-truth masks)");
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");
 }

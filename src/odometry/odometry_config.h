@@ -35,7 +35,7 @@ enum class MaskSource {
 
 struct RunOptions {
   bool preload = true;  // decode the next frames in a second thread while processing
-  bool lookahead = true;  // frame t+1's features and mask beside frame t's tracking (same results)
+  bool lookahead = true;  // frame t+1's features and mask beside frame t's later steps (same results)
   int max_frames = 0;   // process at most this many frames (0 = all)
   void Check() const;
 };

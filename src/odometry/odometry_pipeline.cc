@@ -117,20 +117,18 @@ bool OdometryPipeline::ImageStagesStandAlone() const { return !NeedsTruthMask() 
 
 bool OdometryPipeline::LooksAhead() const { return config_.run.lookahead && ImageStagesStandAlone(); }
 
-OdometryPipeline::ImageStages OdometryPipeline::ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
-                                                                 const TrackingPyramid& previous_pyramid) {
+OdometryPipeline::ImageStages OdometryPipeline::ComputeFeatures(const RgbdFrame& frame) {
   ImageStages stages;
-  const auto extract = [this, &frame, &stages] {
-    const auto t = Clock::now();
-    stages.features = extractor_.Extract(frame.gray, frame.depth, camera_);
-    stages.features_ms = MsSince(t);
-    stages.has_features = true;
-  };
-  if (!config_.dynamic_mask_enabled) {
-    extract();
-    return stages;
-  }
-  std::future<void> features_done = std::async(std::launch::async, extract);  // beside the mask
+  const auto t = Clock::now();
+  stages.features = extractor_.Extract(frame.gray, frame.depth, camera_);
+  stages.features_ms = MsSince(t);
+  stages.has_features = true;
+  return stages;
+}
+
+OdometryPipeline::ImageStages OdometryPipeline::ComputeMask(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                          const TrackingPyramid& previous_pyramid) const {
+  ImageStages stages;
   const auto t = Clock::now();
   DynamicMaskInput input;
   input.previous_gray = previous_gray;
@@ -142,28 +140,63 @@ OdometryPipeline::ImageStages OdometryPipeline::ComputeImageStages(const RgbdFra
   stages.pyramid = input.current_pyramid;
   stages.mask_ms = MsSince(t);
   stages.has_mask = true;
-  features_done.get();
   return stages;
 }
 
-void OdometryPipeline::StartLookAhead(const cv::Mat& gray, const RgbdFrame& next) {
+void OdometryPipeline::MergeMask(ImageStages&& from, ImageStages* to) {
+  to->has_mask = from.has_mask;
+  to->mask = std::move(from.mask);
+  to->pyramid = std::move(from.pyramid);
+  to->mask_ms = from.mask_ms;
+}
+
+OdometryPipeline::ImageStages OdometryPipeline::ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                                 const TrackingPyramid& previous_pyramid) {
+  if (!config_.dynamic_mask_enabled) return ComputeFeatures(frame);
+  std::future<ImageStages> features = std::async(std::launch::async, [this, &frame] { return ComputeFeatures(frame); });
+  ImageStages mask = ComputeMask(frame, previous_gray, previous_pyramid);  // beside the features
+  ImageStages stages = features.get();
+  MergeMask(std::move(mask), &stages);
+  return stages;
+}
+
+void OdometryPipeline::StartLookAheadMask(const cv::Mat& gray, const RgbdFrame& next) {
   ahead_gray_ = next.gray;
   // Copies of the headers: the job reads no member that Process changes before joining it.
-  ahead_ = std::async(std::launch::async, [this, gray, pyramid = previous_pyramid_, next] {
-    return ComputeImageStages(next, gray, pyramid);
+  ahead_mask_ = std::async(std::launch::async, [this, gray, pyramid = previous_pyramid_, next] {
+    return ComputeMask(next, gray, pyramid);
   });
 }
 
+void OdometryPipeline::StartLookAheadFeatures(const RgbdFrame& next) {
+  ahead_gray_ = next.gray;
+  ahead_features_ = std::async(std::launch::async, [this, next] { return ComputeFeatures(next); });
+}
+
 OdometryPipeline::ImageStages OdometryPipeline::TakeLookAhead(const RgbdFrame& frame) {
-  if (!ahead_.valid()) return {};
+  if (!ahead_mask_.valid() && !ahead_features_.valid()) return {};
   const bool for_this_frame = SameImage(ahead_gray_, frame.gray);
   ahead_gray_.release();
-  if (for_this_frame) return ahead_.get();  // rethrows the job's error
-  try {
-    ahead_.get();  // another frame came instead: its result, or its error, is dropped
-  } catch (const std::exception&) {
+  ImageStages stages;
+  std::exception_ptr error;
+  // Both jobs are always waited for, whichever throws; the first error is rethrown.
+  for (std::future<ImageStages>* job : {&ahead_features_, &ahead_mask_}) {
+    if (!job->valid()) continue;
+    try {
+      ImageStages part = job->get();
+      if (part.has_features) {
+        stages.has_features = true;
+        stages.features = std::move(part.features);
+        stages.features_ms = part.features_ms;
+      }
+      if (part.has_mask) MergeMask(std::move(part), &stages);
+    } catch (const std::exception&) {
+      if (!error) error = std::current_exception();
+    }
   }
-  return {};
+  if (!for_this_frame) return {};  // another frame came instead: its result, or its error, is dropped
+  if (error) std::rethrow_exception(error);
+  return stages;
 }
 
 FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next,
@@ -270,8 +303,12 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
     }
   }
 
-  // Frame t-1's map test for the trim, carried into frame t by the homography on the second core
-  // (free until the look-ahead starts) while steps 1b-1c run here. It reads map_explained_ alone.
+  // Look-ahead: frame t+1's mask needs frames t and t+1 alone (and frame t's pyramid, built in
+  // step 1): it starts now, on the second core, which the steps until tracking leave mostly idle.
+  if (next != nullptr && LooksAhead() && config_.dynamic_mask_enabled) StartLookAheadMask(frame.gray, *next);
+
+  // Frame t-1's map test for the trim, carried into frame t by the homography on another thread
+  // while steps 1b-1c run here. It reads map_explained_ alone.
   std::future<cv::Mat> explained_future;
   if (has_current_from_previous && config_.depth_trim.enabled && !map_explained_.empty())
     explained_future = std::async(std::launch::async, [this, &current_from_previous] {
@@ -398,8 +435,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   record.features_kept = static_cast<int>(split.kept.size());
   record.features_removed = static_cast<int>(split.removed.size());
 
-  // Look-ahead: frame t+1's features and mask start on the second core while this one tracks.
-  if (next != nullptr && LooksAhead()) StartLookAhead(frame.gray, *next);
+  // Look-ahead: frame t+1's features start on the second core while this one tracks (its mask
+  // started after step 1).
+  if (next != nullptr && LooksAhead()) StartLookAheadFeatures(*next);
 
   // 4. Pose from the static features, local map, local BA.
   const TrackingResult tracking = tracker_.Track(split.kept, frame.stamp, &split.removed);

@@ -64,7 +64,7 @@ class OdometryPipeline {
 
   // Processes frame t and returns its record (pose always set). `next` is frame t+1 (null at the
   // end of the sequence or when it is not loaded yet): backward detection "triplet" needs it, and
-  // with run.lookahead its features and mask are computed beside frame t's tracking, to be taken
+  // with run.lookahead its features and mask are computed beside frame t's later steps, to be taken
   // by the next call when it is handed that same frame (same pixels in memory). The results do
   // not depend on it.
   // `truth_mask` is frame t's ground-truth mask (CV_8UC1, non-zero = dynamic), used only with
@@ -102,9 +102,19 @@ class OdometryPipeline {
   // `previous_pyramid`), the two on two threads. Uses extractor_ and reads only the options.
   ImageStages ComputeImageStages(const RgbdFrame& frame, const cv::Mat& previous_gray,
                                  const TrackingPyramid& previous_pyramid);
-  // Starts ComputeImageStages of `next` against frame t (`gray`, previous_pyramid_) on a thread.
-  void StartLookAhead(const cv::Mat& gray, const RgbdFrame& next);
-  // The look-ahead's result when it was started for `frame`; else waits for it and returns none.
+  // The features part of ComputeImageStages (uses extractor_).
+  ImageStages ComputeFeatures(const RgbdFrame& frame);
+  // The mask part of ComputeImageStages (reads only the options).
+  ImageStages ComputeMask(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                          const TrackingPyramid& previous_pyramid) const;
+  // Moves the mask part of `from` (mask, pyramid, time) into `to`.
+  static void MergeMask(ImageStages&& from, ImageStages* to);
+  // The look-ahead of `next` in two jobs: its mask against frame t (`gray`, previous_pyramid_),
+  // started as soon as frame t's own mask is known; its features once frame t's refill has left
+  // extractor_ (started last, for the same `next`).
+  void StartLookAheadMask(const cv::Mat& gray, const RgbdFrame& next);
+  void StartLookAheadFeatures(const RgbdFrame& next);
+  // The look-ahead's result when it was started for `frame`; else waits for its jobs and returns none.
   ImageStages TakeLookAhead(const RgbdFrame& frame);
 
   // map_occlusion: the pixels of `frame` in front of the static map at its estimated pose
@@ -137,10 +147,11 @@ class OdometryPipeline {
   cv::Mat map_explained_;   // depth_trim: where frame t-1's depth is explained by the static map
   cv::Mat occlusion_mask_;  // map_occlusion: what frame t-1 measured in front of the static map
   cv::Mat kept_occlusion_;  // map_occlusion.seeded: the regions of it frame t-1 kept (seeds for frame t)
-  // Look-ahead: the job computing the image stages of the frame whose grey image is ahead_gray_.
-  // Declared last, so that it is destroyed (its job waited for) before what the job uses.
+  // Look-ahead: the jobs computing the image stages of the frame whose grey image is ahead_gray_.
+  // Declared last, so that they are destroyed (their jobs waited for) before what the jobs use.
   cv::Mat ahead_gray_;
-  std::future<ImageStages> ahead_;
+  std::future<ImageStages> ahead_mask_;
+  std::future<ImageStages> ahead_features_;
 };
 
 }  // namespace dynvo
