@@ -27,14 +27,6 @@ double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// A binary mask of frame t-1 carried into frame t by the ego-motion homography (nearest
-// neighbour, 0 where it has no source).
-cv::Mat CarriedIntoFrame(const cv::Mat& mask, const Eigen::Matrix3d& current_from_previous) {
-  cv::Mat carried;
-  WarpBinaryMask(mask, current_from_previous, mask.size(), &carried);
-  return carried;
-}
-
 // The union of two binary masks of one size; an empty one adds nothing.
 cv::Mat Union(const cv::Mat& a, const cv::Mat& b) {
   if (a.empty()) return b;
@@ -307,14 +299,6 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   // step 1): it starts now, on the second core, which the steps until tracking leave mostly idle.
   if (next != nullptr && LooksAhead() && config_.dynamic_mask_enabled) StartLookAheadMask(frame.gray, *next);
 
-  // Frame t-1's map test for the trim, carried into frame t by the homography on another thread
-  // while steps 1b-1c run here. It reads map_explained_ alone.
-  std::future<cv::Mat> explained_future;
-  if (has_current_from_previous && config_.depth_trim.enabled && !map_explained_.empty())
-    explained_future = std::async(std::launch::async, [this, &current_from_previous] {
-      return CarriedIntoFrame(map_explained_, current_from_previous);
-    });
-
   // 1b. Depth change (paper mode with the detector): what moves along the line of sight, found
   // between the last frame and the one `frames` before it, whose poses are both estimated
   // already (computed at the end of the last call), and carried into this frame by the detector's
@@ -325,12 +309,15 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   const bool carry_change = !changed_last.empty() && !NeedsTruthMask() && has_current_from_previous &&
                             (!config_.depth_change.seeds_only || !occlusion_mask_.empty());
   const bool carry_occlusion = config_.map_occlusion.enabled && !occlusion_mask_.empty() && has_current_from_previous;
-  // The masks of frame t-1 that steps 1b-1c use, carried into frame t by one warp.
+  // Frame t-1's map test, for the trim (step 1d).
+  const bool carry_explained = config_.depth_trim.enabled && !map_explained_.empty() && has_current_from_previous;
+  // The masks of frame t-1 that steps 1b-1d use, carried into frame t by one warp.
   auto t = Clock::now();
-  std::vector<cv::Mat> carried_masks;  // change, occlusion, kept occlusion (empty: not carried)
-  if (carry_change || carry_occlusion)
+  std::vector<cv::Mat> carried_masks(4);  // change, occlusion, kept occlusion, explained (empty: not carried)
+  if (carry_change || carry_occlusion || carry_explained)
     carried_masks = WarpBinaryMasks({carry_change ? changed_last : cv::Mat(), carry_occlusion ? occlusion_mask_ : cv::Mat(),
-                                     carry_occlusion && config_.map_occlusion.seeded ? kept_occlusion_ : cv::Mat()},
+                                     carry_occlusion && config_.map_occlusion.seeded ? kept_occlusion_ : cv::Mat(),
+                                     carry_explained ? map_explained_ : cv::Mat()},
                                     current_from_previous, frame.gray.size());
   record.times.dynamic_mask_ms += MsSince(t);
   cv::Mat change_seeds;
@@ -372,9 +359,7 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
-  const auto wait_start = Clock::now();
-  const cv::Mat explained = explained_future.valid() ? explained_future.get() : cv::Mat();
-  record.times.dynamic_mask_ms += MsSince(wait_start);
+  const cv::Mat& explained = carried_masks[3];
   // 1d. Trim (depth_trim): each region of the mask cut to its near surface where the static map
   // explains the rest (frame t-1's map test, carried into frame t by the homography), so that the
   // background the dilations spilled over around a person gives its features back.
