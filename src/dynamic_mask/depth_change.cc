@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -38,24 +39,28 @@ cv::Mat DepthChangeMask(const cv::Mat& depth, const cv::Mat& earlier_depth, cons
   const float threshold = static_cast<float>(options.threshold);
   // 255 where the relative change exceeds the threshold; 0 also where there is nothing to compare.
   cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < depth.rows; ++v) {
-    const Eigen::Vector3f row_ray = rotation.col(1) * static_cast<float>((v - camera.cy) / camera.fy) + rotation.col(2);
-    const float* d_row = depth.ptr<float>(v);
-    uchar* mask_row = mask.ptr<uchar>(v);
-    for (int u = 0; u < depth.cols; ++u) {
-      const float d = d_row[u];
-      if (!(d > 0.0f)) continue;
-      const Eigen::Vector3f earlier = d * (row_ray + column_ray[static_cast<size_t>(u)]) + translation;
-      if (earlier.z() < 0.05f) continue;
-      const float inverse_z = 1.0f / earlier.z();
-      const int eu = cvRound(fx * earlier.x() * inverse_z + cx);
-      const int ev = cvRound(fy * earlier.y() * inverse_z + cy);
-      if (eu < 0 || ev < 0 || eu >= depth.cols || ev >= depth.rows) continue;
-      const float measured = earlier_depth.ptr<float>(ev)[eu];
-      if (!(measured > 0.0f)) continue;
-      if (std::abs(earlier.z() - measured) * inverse_z > threshold) mask_row[u] = 255;
+  // Rows are independent: split over OpenCV's pool (same result whatever the split).
+  cv::parallel_for_(cv::Range(0, depth.rows), [&](const cv::Range& rows) {
+    for (int v = rows.start; v < rows.end; ++v) {
+      const Eigen::Vector3f row_ray =
+          rotation.col(1) * static_cast<float>((v - camera.cy) / camera.fy) + rotation.col(2);
+      const float* d_row = depth.ptr<float>(v);
+      uchar* mask_row = mask.ptr<uchar>(v);
+      for (int u = 0; u < depth.cols; ++u) {
+        const float d = d_row[u];
+        if (!(d > 0.0f)) continue;
+        const Eigen::Vector3f earlier = d * (row_ray + column_ray[static_cast<size_t>(u)]) + translation;
+        if (earlier.z() < 0.05f) continue;
+        const float inverse_z = 1.0f / earlier.z();
+        const int eu = cvRound(fx * earlier.x() * inverse_z + cx);
+        const int ev = cvRound(fy * earlier.y() * inverse_z + cy);
+        if (eu < 0 || ev < 0 || eu >= depth.cols || ev >= depth.rows) continue;
+        const float measured = earlier_depth.ptr<float>(ev)[eu];
+        if (!(measured > 0.0f)) continue;
+        if (std::abs(earlier.z() - measured) * inverse_z > threshold) mask_row[u] = 255;
+      }
     }
-  }
+  });
   // Kept where the change exceeds the threshold everywhere in the 3x3 neighbourhood.
   cv::erode(mask, mask, cv::Mat::ones(3, 3, CV_8UC1));
   if (options.open_px > 1)

@@ -38,6 +38,15 @@ float CentroidAngle(const cv::Mat& image, const cv::Point2f& pt, const std::vect
   return angle >= 360.0f ? angle - 360.0f : angle;
 }
 
+// True when the level-`scale` corner at `pt` (level coordinates) lies on a non-zero pixel of
+// `exclude` (level-0 size; empty = nothing excluded).
+bool Excluded(const cv::Mat& exclude, const cv::Point2f& pt, double scale) {
+  if (exclude.empty()) return false;
+  const int ex = std::min(exclude.cols - 1, static_cast<int>(std::lround(pt.x * scale)));
+  const int ey = std::min(exclude.rows - 1, static_cast<int>(std::lround(pt.y * scale)));
+  return exclude.at<uint8_t>(ey, ex) != 0;
+}
+
 bool DepthValid(float d, const FeatureOptions& options) {
   return std::isfinite(d) && d >= options.min_depth_m && d <= options.max_depth_m && d > 0.0f;
 }
@@ -82,16 +91,19 @@ FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(opt
                                     cv::ORB::FAST_SCORE, kPatchSize, options_.fast_threshold));
 }
 
-void FeatureExtractor::ExtractLevel(int l, const cv::Mat& exclude,
-                                    std::vector<cv::KeyPoint>* keypoints,
-                                    cv::Mat* descriptors) const {
+bool FeatureExtractor::LevelUsable(int l) const {
   const cv::Mat& image = pyramid_[l];
-  const int wanted = features_per_level_[l];
-  if (wanted <= 0 || image.cols <= 2 * kEdge + 1 || image.rows <= 2 * kEdge + 1) return;
+  return features_per_level_[l] > 0 && image.cols > 2 * kEdge + 1 && image.rows > 2 * kEdge + 1;
+}
+
+void FeatureExtractor::DetectLevel(int l, const cv::Mat& exclude, std::vector<cv::KeyPoint>* detected) const {
+  const cv::Mat& image = pyramid_[l];
+  if (!LevelUsable(l)) return;
   // Detection region: corners at [kEdge, size - kEdge - 1] (FAST needs 3 pixels around).
   const cv::Rect inner(kEdge - 3, kEdge - 3, image.cols - 2 * kEdge + 5, image.rows - 2 * kEdge + 5);
   const double scale = scales_[l];
-  std::vector<cv::KeyPoint> candidates;
+  std::vector<cv::KeyPoint>& candidates = *detected;
+  candidates.clear();
   // Keeps a corner found in the sub-image at (x0, y0) of `inner` when it lies inside the
   // detection region and off excluded pixels; returns its level coordinates in `candidates`.
   auto accept = [&](cv::KeyPoint k, int x0, int y0) {
@@ -100,11 +112,7 @@ void FeatureExtractor::ExtractLevel(int l, const cv::Mat& exclude,
     if (k.pt.x < kEdge || k.pt.y < kEdge || k.pt.x > image.cols - kEdge - 1 ||
         k.pt.y > image.rows - kEdge - 1)
       return;
-    if (!exclude.empty()) {
-      const int ex = std::min(exclude.cols - 1, static_cast<int>(std::lround(k.pt.x * scale)));
-      const int ey = std::min(exclude.rows - 1, static_cast<int>(std::lround(k.pt.y * scale)));
-      if (exclude.at<uint8_t>(ey, ex) != 0) return;
-    }
+    if (Excluded(exclude, k.pt, scale)) return;
     candidates.push_back(k);
   };
   std::vector<cv::KeyPoint> corners, retry;
@@ -145,7 +153,14 @@ void FeatureExtractor::ExtractLevel(int l, const cv::Mat& exclude,
       }
     }
   }
+}
 
+void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates,
+                                     std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) const {
+  if (!LevelUsable(l)) return;
+  const cv::Mat& image = pyramid_[l];
+  const int wanted = features_per_level_[l];
+  const double scale = scales_[l];
   const cv::Rect2f region(static_cast<float>(kEdge), static_cast<float>(kEdge),
                           static_cast<float>(image.cols - 2 * kEdge),
                           static_cast<float>(image.rows - 2 * kEdge));
@@ -185,15 +200,13 @@ void FeatureExtractor::ExtractLevel(int l, const cv::Mat& exclude,
   }
 }
 
-FrameFeatures FeatureExtractor::Extract(const cv::Mat& gray, const cv::Mat& depth,
-                                        const Camera& camera, const cv::Mat& exclude) {
+void FeatureExtractor::BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude) {
   if (gray.empty() || gray.type() != CV_8UC1)
     throw InputError("FeatureExtractor: image must be a non-empty CV_8UC1 grey image");
   if (!depth.empty() && (depth.type() != CV_32FC1 || depth.size() != gray.size()))
     throw InputError("FeatureExtractor: depth must be CV_32FC1 of the image's size");
   if (!exclude.empty() && (exclude.type() != CV_8UC1 || exclude.size() != gray.size()))
     throw InputError("FeatureExtractor: exclude mask must be CV_8UC1 of the image's size");
-
   const int levels = options_.num_levels;
   pyramid_.resize(levels);
   pyramid_[0] = gray;
@@ -201,19 +214,59 @@ FrameFeatures FeatureExtractor::Extract(const cv::Mat& gray, const cv::Mat& dept
     const cv::Size size(cvRound(gray.cols / scales_[l]), cvRound(gray.rows / scales_[l]));
     cv::resize(pyramid_[l - 1], pyramid_[l], size, 0, 0, cv::INTER_LINEAR);
   }
+}
 
-  std::vector<std::vector<cv::KeyPoint>> level_keypoints(levels);
-  std::vector<cv::Mat> level_descriptors(levels);
+template <typename PerLevel>
+void FeatureExtractor::ForEachLevel(const PerLevel& per_level) const {
+  const int levels = options_.num_levels;
   if (options_.parallel_levels) {
     // Levels are independent; the result does not depend on the schedule.
     cv::parallel_for_(cv::Range(0, levels), [&](const cv::Range& range) {
-      for (int l = range.start; l < range.end; ++l)
-        ExtractLevel(l, exclude, &level_keypoints[l], &level_descriptors[l]);
+      for (int l = range.start; l < range.end; ++l) per_level(l);
     });
   } else {
-    for (int l = 0; l < levels; ++l)
-      ExtractLevel(l, exclude, &level_keypoints[l], &level_descriptors[l]);
+    for (int l = 0; l < levels; ++l) per_level(l);
   }
+}
+
+FrameFeatures FeatureExtractor::Extract(const cv::Mat& gray, const cv::Mat& depth, const Camera& camera,
+                                        const cv::Mat& exclude, DetectedCorners* corners) {
+  BuildPyramid(gray, depth, exclude);
+  const int levels = options_.num_levels;
+  std::vector<std::vector<cv::KeyPoint>> level_candidates(levels), level_keypoints(levels);
+  std::vector<cv::Mat> level_descriptors(levels);
+  ForEachLevel([&](int l) {
+    DetectLevel(l, exclude, &level_candidates[l]);
+    DescribeLevel(l, level_candidates[l], &level_keypoints[l], &level_descriptors[l]);
+  });
+  if (corners) {
+    corners->image_size = gray.size();
+    corners->levels = std::move(level_candidates);
+  }
+  return Assemble(level_keypoints, level_descriptors, depth, camera);
+}
+
+FrameFeatures FeatureExtractor::ExtractFromCorners(const DetectedCorners& corners, const cv::Mat& gray,
+                                                   const cv::Mat& depth, const Camera& camera, const cv::Mat& exclude) {
+  if (corners.image_size != gray.size() || static_cast<int>(corners.levels.size()) != options_.num_levels)
+    throw InputError("FeatureExtractor: the corners were detected at another image size or pyramid depth");
+  BuildPyramid(gray, depth, exclude);
+  const int levels = options_.num_levels;
+  std::vector<std::vector<cv::KeyPoint>> level_keypoints(levels);
+  std::vector<cv::Mat> level_descriptors(levels);
+  ForEachLevel([&](int l) {
+    std::vector<cv::KeyPoint> kept;
+    kept.reserve(corners.levels[l].size());
+    for (const cv::KeyPoint& k : corners.levels[l])
+      if (!Excluded(exclude, k.pt, scales_[l])) kept.push_back(k);
+    DescribeLevel(l, kept, &level_keypoints[l], &level_descriptors[l]);
+  });
+  return Assemble(level_keypoints, level_descriptors, depth, camera);
+}
+
+FrameFeatures FeatureExtractor::Assemble(const std::vector<std::vector<cv::KeyPoint>>& level_keypoints,
+                                         const std::vector<cv::Mat>& level_descriptors, const cv::Mat& depth,
+                                         const Camera& camera) const {
   FrameFeatures out;
   for (const std::vector<cv::KeyPoint>& k : level_keypoints)
     out.keypoints.insert(out.keypoints.end(), k.begin(), k.end());

@@ -12,6 +12,15 @@
 
 namespace dynvo {
 
+// The corners one extraction detected, per pyramid level, before they were spread and
+// described: what FeatureExtractor::ExtractFromCorners chooses from again.
+struct DetectedCorners {
+  cv::Size image_size;                             // of the image they were detected on
+  std::vector<std::vector<cv::KeyPoint>> levels;   // per level, level pixel coordinates
+
+  bool empty() const { return levels.empty(); }
+};
+
 // Per pyramid level: FAST corners at `fast_threshold`, retried at `min_fast_threshold` in
 // 32-pixel cells that have none; the level's share of `num_features` (geometric in the scale)
 // chosen by `distribution` (quadtree: ORB-SLAM's); intensity-centroid angle; descriptors by
@@ -27,15 +36,39 @@ class FeatureExtractor {
   // when it has distortion, and back-projected through `depth` (CV_32FC1 metres, same size;
   // empty -> no depth). Optional `exclude` mask (CV_8UC1, non-zero = do not detect there) may
   // be empty. Throws InputError on wrong types or sizes.
+  // With `corners`, also the corners detected (before spreading), for ExtractFromCorners.
   FrameFeatures Extract(const cv::Mat& gray, const cv::Mat& depth, const Camera& camera,
-                        const cv::Mat& exclude = cv::Mat());
+                        const cv::Mat& exclude = cv::Mat(), DetectedCorners* corners = nullptr);
+
+  // Features chosen again from corners an earlier Extract detected: those off `exclude` (same
+  // rules as Extract's), spread by `options.distribution`, oriented and described on `gray` (the
+  // image they were detected on, or one that differs from it only where the caller knows, e.g.
+  // filled from the background). No detection pass: corners Extract would have found by
+  // retrying cells whose corners are all excluded are not found. With corners of the same image
+  // and an empty `exclude`, equals Extract. Throws InputError on wrong types or sizes, or when
+  // `corners` were detected at another image size or pyramid depth.
+  FrameFeatures ExtractFromCorners(const DetectedCorners& corners, const cv::Mat& gray, const cv::Mat& depth,
+                                   const Camera& camera, const cv::Mat& exclude = cv::Mat());
 
   const FeatureOptions& options() const { return options_; }
 
  private:
-  // Keypoints (level-0 coordinates) and descriptors of pyramid level `l`.
-  void ExtractLevel(int l, const cv::Mat& exclude, std::vector<cv::KeyPoint>* keypoints,
-                    cv::Mat* descriptors) const;
+  // True when level `l` is large enough and has a share of the features.
+  bool LevelUsable(int l) const;
+  // Corners of pyramid level `l` off `exclude` (level coordinates, unspread).
+  void DetectLevel(int l, const cv::Mat& exclude, std::vector<cv::KeyPoint>* candidates) const;
+  // Keypoints (level-0 coordinates) and descriptors of pyramid level `l` from its candidates.
+  void DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates, std::vector<cv::KeyPoint>* keypoints,
+                     cv::Mat* descriptors) const;
+  // The pyramid of `gray` into pyramid_ (after checking the inputs).
+  void BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude);
+  // Runs `per_level(l)` for every level (on OpenCV's pool with parallel_levels).
+  template <typename PerLevel>
+  void ForEachLevel(const PerLevel& per_level) const;
+  // The features of the levels' keypoints and descriptors: undistorted, back-projected.
+  FrameFeatures Assemble(const std::vector<std::vector<cv::KeyPoint>>& level_keypoints,
+                         const std::vector<cv::Mat>& level_descriptors, const cv::Mat& depth,
+                         const Camera& camera) const;
 
   FeatureOptions options_;
   std::vector<double> scales_;            // scale of each level relative to level 0

@@ -30,6 +30,8 @@ void FeatureOptions::Check() const {
           refill_margin_px);
   if (refill_from_background && !refill_outside_mask)
     throw InputError("features.refill_from_background needs features.refill_outside_mask=true");
+  if (refill_reuse_corners && !refill_outside_mask)
+    throw InputError("features.refill_reuse_corners needs features.refill_outside_mask=true");
 }
 
 FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key) {

@@ -27,6 +27,10 @@ struct FeatureOptions {
   // the static background seen there in earlier frames (dynamic_mask/background_fill.h), so
   // that features near the mask are not described on what moves.
   bool refill_from_background = false;
+  // With refill_outside_mask: the refill chooses again among the corners the frame's first
+  // extraction detected (those off the grown mask) instead of detecting them again: no second
+  // detection pass; cells whose corners all lie on the mask are not retried at the low threshold.
+  bool refill_reuse_corners = false;
 
   // Throws InputError naming the key "features.<field>" when a field is out of range.
   void Check() const;

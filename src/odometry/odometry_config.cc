@@ -205,6 +205,9 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("features.refill_from_background", &f->refill_from_background,
           "with refill_outside_mask: the refill describes the frame with the mask's pixels taken from the "
           "static background of earlier frames (carried by the ego-motion homography) instead of what moves");
+  r->Bind("features.refill_reuse_corners", &f->refill_reuse_corners,
+          "with refill_outside_mask: the refill chooses again among the corners the first extraction detected "
+          "off the grown mask instead of detecting them again (no second detection pass)");
   r->Bind("features.min_depth_m", &f->min_depth_m, "nearer depth gives no 3D point");
   r->Bind("features.max_depth_m", &f->max_depth_m, "farther depth gives no 3D point");
   // matching, pose, map, keyframes, local BA, tracking

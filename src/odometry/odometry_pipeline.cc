@@ -112,7 +112,8 @@ bool OdometryPipeline::LooksAhead() const { return config_.run.lookahead && Imag
 OdometryPipeline::ImageStages OdometryPipeline::ComputeFeatures(const RgbdFrame& frame) {
   ImageStages stages;
   const auto t = Clock::now();
-  stages.features = extractor_.Extract(frame.gray, frame.depth, camera_);
+  stages.features = extractor_.Extract(frame.gray, frame.depth, camera_, cv::Mat(),
+                                       config_.features.refill_reuse_corners ? &stages.corners : nullptr);
   stages.features_ms = MsSince(t);
   stages.has_features = true;
   return stages;
@@ -133,6 +134,13 @@ OdometryPipeline::ImageStages OdometryPipeline::ComputeMask(const RgbdFrame& fra
   stages.mask_ms = MsSince(t);
   stages.has_mask = true;
   return stages;
+}
+
+void OdometryPipeline::MergeFeatures(ImageStages&& from, ImageStages* to) {
+  to->has_features = from.has_features;
+  to->features = std::move(from.features);
+  to->corners = std::move(from.corners);
+  to->features_ms = from.features_ms;
 }
 
 void OdometryPipeline::MergeMask(ImageStages&& from, ImageStages* to) {
@@ -176,11 +184,7 @@ OdometryPipeline::ImageStages OdometryPipeline::TakeLookAhead(const RgbdFrame& f
     if (!job->valid()) continue;
     try {
       ImageStages part = job->get();
-      if (part.has_features) {
-        stages.has_features = true;
-        stages.features = std::move(part.features);
-        stages.features_ms = part.features_ms;
-      }
+      if (part.has_features) MergeFeatures(std::move(part), &stages);
       if (part.has_mask) MergeMask(std::move(part), &stages);
     } catch (const std::exception&) {
       if (!error) error = std::current_exception();
@@ -208,16 +212,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
 
   // 2. (Triplet, ground-truth masks.) Features, on a second thread while this one computes the
   // mask: extraction does not depend on the mask, so the result is the same as in sequence.
-  std::future<FrameFeatures> features_future;
-  double features_ms = stages.features_ms;
-  if (!stages.has_features && config_.dynamic_mask_enabled && !previous_gray_.empty()) {
-    features_future = std::async(std::launch::async, [this, &frame, &features_ms] {
-      const auto t = Clock::now();
-      FrameFeatures extracted = extractor_.Extract(frame.gray, frame.depth, camera_);
-      features_ms = MsSince(t);
-      return extracted;
-    });
-  }
+  std::future<ImageStages> features_future;
+  if (!stages.has_features && config_.dynamic_mask_enabled && !previous_gray_.empty())
+    features_future = std::async(std::launch::async, [this, &frame] { return ComputeFeatures(frame); });
 
   // 1. Dynamic mask (skipped in the baseline and on the first frame), or the given one.
   const cv::Mat previous_mask = last_mask_;
@@ -375,16 +372,10 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
   if (debug) debug->fused_mask = last_mask_;
 
   // 3. Features minus the dynamic ones.
-  t = Clock::now();
-  FrameFeatures features;
-  if (stages.has_features) {
-    features = std::move(stages.features);
-  } else if (features_future.valid()) {
-    features = features_future.get();
-  } else {
-    features = extractor_.Extract(frame.gray, frame.depth, camera_);
-    features_ms = MsSince(t);
-  }
+  if (!stages.has_features)
+    MergeFeatures(features_future.valid() ? features_future.get() : ComputeFeatures(frame), &stages);
+  FrameFeatures features = std::move(stages.features);
+  double features_ms = stages.features_ms;
   t = Clock::now();
   FeatureSplit split;
   if (!last_mask_.empty()) {
@@ -411,7 +402,9 @@ FrameRecord OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* n
     t = Clock::now();
     cv::Mat exclude = last_mask_.clone();  // the mask grown by the margin on every side
     DilateMask(MorphShape::kRect, 2 * config_.features.refill_margin_px + 1, 1, &exclude);
-    split.kept = extractor_.Extract(described, frame.depth, camera_, exclude);
+    split.kept = stages.corners.empty()
+                     ? extractor_.Extract(described, frame.depth, camera_, exclude)
+                     : extractor_.ExtractFromCorners(stages.corners, described, frame.depth, camera_, exclude);
     split.kept_indices.clear();  // the kept features no longer index the first extraction
     features_ms += MsSince(t);
   }

@@ -92,6 +92,7 @@ class OdometryPipeline {
   struct ImageStages {
     bool has_features = false;
     FrameFeatures features;
+    DetectedCorners corners;  // with features.refill_reuse_corners: what the extraction detected
     double features_ms = 0.0;
     bool has_mask = false;
     DynamicMaskResult mask;
@@ -107,6 +108,8 @@ class OdometryPipeline {
   // The mask part of ComputeImageStages (reads only the options).
   ImageStages ComputeMask(const RgbdFrame& frame, const cv::Mat& previous_gray,
                           const TrackingPyramid& previous_pyramid) const;
+  // Moves the features part of `from` (features, corners, time) into `to`.
+  static void MergeFeatures(ImageStages&& from, ImageStages* to);
   // Moves the mask part of `from` (mask, pyramid, time) into `to`.
   static void MergeMask(ImageStages&& from, ImageStages* to);
   // The look-ahead of `next` in two jobs: its mask against frame t (`gray`, previous_pyramid_),

@@ -209,6 +209,91 @@ TEST(FeatureExtractor, ExcludeMaskKeepsDetectionOut) {
   EXPECT_GT(outside.size(), 800u);  // the budget goes to the rest of the image
 }
 
+// True when both have the same keypoints (position, angle, response, level) and descriptors.
+void ExpectSameFeatures(const FrameFeatures& a, const FrameFeatures& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a.keypoints[i].pt, b.keypoints[i].pt) << i;
+    EXPECT_EQ(a.keypoints[i].angle, b.keypoints[i].angle) << i;
+    EXPECT_EQ(a.keypoints[i].response, b.keypoints[i].response) << i;
+    EXPECT_EQ(a.keypoints[i].octave, b.keypoints[i].octave) << i;
+  }
+  EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
+TEST(FeatureExtractor, FromItsOwnCornersEqualsExtract) {
+  const cv::Mat image = test::TexturedImage(11);
+  for (bool parallel : {false, true}) {
+    FeatureOptions options;
+    options.parallel_levels = parallel;
+    FeatureExtractor extractor(options);
+    DetectedCorners corners;
+    const FrameFeatures extracted = extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(), &corners);
+    ASSERT_EQ(corners.levels.size(), 8u);
+    EXPECT_EQ(corners.image_size, image.size());
+    size_t detected = 0;
+    for (const auto& level : corners.levels) detected += level.size();
+    EXPECT_GT(detected, 2 * extracted.size());  // more detected than chosen: the choice is real
+    ExpectSameFeatures(extractor.ExtractFromCorners(corners, image, cv::Mat(), Camera{}), extracted);
+  }
+}
+
+TEST(FeatureExtractor, FromCornersChoosesDetectedCornersOffTheMaskAndDescribesTheGivenImage) {
+  const cv::Mat image = test::TexturedImage(12);
+  const cv::Rect person(220, 120, 160, 240);
+  cv::Mat exclude(480, 640, CV_8UC1, cv::Scalar(0));
+  exclude(person).setTo(255);
+  // The image the caller describes on: the person's pixels replaced by other texture.
+  cv::Mat filled = image.clone();
+  test::TexturedImage(13)(person).copyTo(filled(person));
+  FeatureExtractor extractor{FeatureOptions{}};
+  DetectedCorners corners;
+  const FrameFeatures all = extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(), &corners);
+  const FrameFeatures on_image = extractor.ExtractFromCorners(corners, image, cv::Mat(), Camera{}, exclude);
+  const FrameFeatures on_filled = extractor.ExtractFromCorners(corners, filled, cv::Mat(), Camera{}, exclude);
+
+  // Off the mask, chosen among the detected corners of their level, the budget spent elsewhere.
+  int all_inside = 0;
+  for (const cv::KeyPoint& k : all.keypoints) all_inside += person.contains(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y)));
+  EXPECT_GT(all_inside, 50);
+  EXPECT_GT(on_image.size(), all.size() - 40);
+  for (const cv::KeyPoint& k : on_image.keypoints) {
+    EXPECT_FALSE(person.contains(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y)))) << k.pt;
+    const double scale = std::pow(1.2, k.octave);
+    const auto& level = corners.levels[static_cast<size_t>(k.octave)];
+    const bool detected = std::any_of(level.begin(), level.end(), [&](const cv::KeyPoint& c) {
+      return std::abs(c.pt.x * scale - k.pt.x) < 1e-3 && std::abs(c.pt.y * scale - k.pt.y) < 1e-3;
+    });
+    EXPECT_TRUE(detected) << k.pt << " level " << k.octave;
+  }
+
+  // The same corners either way; described on the image given: the patches that reach into the
+  // replaced pixels change, the others do not.
+  ASSERT_EQ(on_image.size(), on_filled.size());
+  int near_changed = 0, far_same = 0, far = 0;
+  for (size_t i = 0; i < on_image.size(); ++i) {
+    const cv::KeyPoint& k = on_image.keypoints[i];
+    ASSERT_EQ(k.pt, on_filled.keypoints[i].pt);
+    const double reach = 25.0 * std::pow(1.2, k.octave);  // descriptor patch and blur, level-0 px
+    const cv::Rect2d grown(person.x - reach, person.y - reach, person.width + 2 * reach, person.height + 2 * reach);
+    const bool same = cv::norm(on_image.descriptors.row(static_cast<int>(i)), on_filled.descriptors.row(static_cast<int>(i)),
+                               cv::NORM_HAMMING) == 0.0;
+    if (grown.contains(cv::Point2d(k.pt.x, k.pt.y))) {
+      near_changed += same ? 0 : 1;
+    } else {
+      ++far;
+      far_same += same ? 1 : 0;
+    }
+  }
+  EXPECT_GT(near_changed, 10);
+  EXPECT_GT(far, 500);
+  EXPECT_EQ(far_same, far);
+
+  EXPECT_THROW(extractor.ExtractFromCorners(corners, image(cv::Rect(0, 0, 320, 240)).clone(), cv::Mat(), Camera{}),
+               InputError);
+  EXPECT_THROW(extractor.ExtractFromCorners(DetectedCorners{}, image, cv::Mat(), Camera{}), InputError);
+}
+
 TEST(FeatureExtractor, DistributionsAndDeterminism) {
   const cv::Mat image = test::DenseCornerImage(8);
   for (FeatureDistribution d :
