@@ -52,6 +52,14 @@ TEST(FeatureOptions, BackgroundFillNeedsTheRefill) {
   EXPECT_EQ(CheckMessage(o), "");
 }
 
+TEST(FeatureOptions, ReusedCornersNeedTheRefill) {
+  FeatureOptions o;
+  o.refill_reuse_corners = true;
+  EXPECT_EQ(CheckMessage(o), "features.refill_reuse_corners needs features.refill_outside_mask=true");
+  o.refill_outside_mask = true;
+  EXPECT_EQ(CheckMessage(o), "");
+}
+
 TEST(FeatureOptions, DistributionRoundTrip) {
   for (FeatureDistribution d :
        {FeatureDistribution::kQuadtree, FeatureDistribution::kGrid, FeatureDistribution::kNone})

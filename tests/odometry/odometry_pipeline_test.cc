@@ -1,7 +1,8 @@
 // The pipeline's mask source "ground_truth": the given mask is the one features are removed by,
 // and a missing or malformed one is an error that names the frame. The debug feature list
-// accounts for every feature of the frame. The refill spends the budget off the mask, and with
-// refill_from_background describes the frame as it would look without what moves.
+// accounts for every feature of the frame. The refill spends the budget off the mask (with
+// refill_reuse_corners, among the frame's own corners), and with refill_from_background describes
+// the frame as it would look without what moves.
 
 #include "odometry/odometry_pipeline.h"
 
@@ -108,6 +109,14 @@ double ShareFoundIn(const DebugPanels& debug, const FrameFeatures& reference) {
   return kept == 0 ? 0.0 : static_cast<double>(found) / kept;
 }
 
+// Share of the features of `features` that `reference` has too (same level, within 0.01 px).
+double ShareFoundIn(const FrameFeatures& features, const FrameFeatures& reference) {
+  DebugPanels as_kept;
+  for (const cv::KeyPoint& k : features.keypoints)
+    as_kept.feature_list.push_back({k.pt, k.octave, 0.0, DebugFeature::Status::kKept, false});
+  return ShareFoundIn(as_kept, reference);
+}
+
 TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
   // A panning camera (6 px per frame) over a textured wall at 2 m; in frame 1 a patch of other
   // texture covers part of it, and the ground-truth mask says where.
@@ -158,6 +167,42 @@ TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
   EXPECT_EQ(cv::countNonZero((debug.background != frames[1].gray) & ~grown), 0);
   // And the features came from it: where the refill would find them without the patch.
   EXPECT_GT(ShareFoundIn(debug, reference), 0.99);
+}
+
+TEST(OdometryPipeline, RefillReusingCornersChoosesAmongTheFramesOwnCorners) {
+  cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
+  mask.colRange(0, 320).setTo(255);  // left half "dynamic"
+  OdometryConfig config = TruthMaskConfig();
+  config.features.refill_outside_mask = true;
+  config.features.refill_reuse_corners = true;
+  config.features.refill_margin_px = 10;
+  // Strong texture under the mask, faint texture off it: FAST finds corners off the mask only at
+  // the low threshold, in cells it retries. Cells across the mask's edge hold strong corners, so a
+  // new detection retries them and the reuse does not: the two refills differ there.
+  RgbdFrame frame = TexturedFrame();
+  frame.gray.colRange(320, 640) = frame.gray.colRange(320, 640) / 8 + 100;
+  cv::Mat exclude = mask.clone();
+  DilateMask(MorphShape::kRect, 2 * config.features.refill_margin_px + 1, 1, &exclude);
+  FeatureExtractor extractor(config.features);
+  DetectedCorners corners;
+  extractor.Extract(frame.gray, frame.depth, Camera{}, cv::Mat(), &corners);
+  const FrameFeatures reference = extractor.ExtractFromCorners(corners, frame.gray, frame.depth, Camera{}, exclude);
+  const FrameFeatures detected_again = extractor.Extract(frame.gray, frame.depth, Camera{}, exclude);
+  ASSERT_LT(ShareFoundIn(detected_again, reference), 0.99);  // the test tells the two apart
+
+  OdometryPipeline pipeline(Camera{}, config);
+  DebugPanels debug;
+  const FrameRecord record = pipeline.Process(frame, nullptr, mask, &debug);
+  // More of the budget off the mask than the first extraction left there.
+  OdometryPipeline plain(Camera{}, TruthMaskConfig());
+  EXPECT_GT(record.features_kept, plain.Process(frame, nullptr, mask).features_kept + 100);
+  EXPECT_EQ(record.features_kept, static_cast<int>(reference.size()));
+  EXPECT_EQ(ShareFoundIn(debug, reference), 1.0);
+  for (const DebugFeature& f : debug.feature_list) {
+    if (f.status == DebugFeature::Status::kKept) {
+      EXPECT_GE(cvRound(f.pixel.x), 320 + config.features.refill_margin_px);
+    }
+  }
 }
 
 TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
