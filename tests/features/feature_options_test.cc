@@ -44,20 +44,14 @@ TEST(FeatureOptions, CheckNamesTheKey) {
   EXPECT_NE(CheckMessage(o).find("features.refill_margin_px"), std::string::npos);
 }
 
-TEST(FeatureOptions, BackgroundFillNeedsTheRefill) {
-  FeatureOptions o;
-  o.refill_from_background = true;
-  EXPECT_EQ(CheckMessage(o), "features.refill_from_background needs features.refill_outside_mask=true");
-  o.refill_outside_mask = true;
-  EXPECT_EQ(CheckMessage(o), "");
-}
-
-TEST(FeatureOptions, ReusedCornersNeedTheRefill) {
-  FeatureOptions o;
-  o.refill_reuse_corners = true;
-  EXPECT_EQ(CheckMessage(o), "features.refill_reuse_corners needs features.refill_outside_mask=true");
-  o.refill_outside_mask = true;
-  EXPECT_EQ(CheckMessage(o), "");
+TEST(FeatureOptions, RefillModesNeedTheRefill) {
+  for (const std::string key : {"refill_from_background", "refill_reuse_corners"}) {
+    FeatureOptions o;
+    (key == "refill_from_background" ? o.refill_from_background : o.refill_reuse_corners) = true;
+    EXPECT_EQ(CheckMessage(o), "features." + key + " needs features.refill_outside_mask=true");
+    o.refill_outside_mask = true;
+    EXPECT_EQ(CheckMessage(o), "");
+  }
 }
 
 TEST(FeatureOptions, DistributionRoundTrip) {
