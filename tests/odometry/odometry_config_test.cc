@@ -57,7 +57,8 @@ TEST(OdometryConfig, OcclusionIsPaperWithTheAdditions) {
       {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
        "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
        "features.refill_from_background=true", "features.parallel_levels=true", "depth_trim.enabled=true",
-       "tracking.coherent_motion.enabled=true"}));
+       "tracking.coherent_motion.enabled=true", "features.refill_reuse_corners=true",
+       "dynamic_mask.difference_level=1"}));
   EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
 }
 
