@@ -94,6 +94,14 @@ class TargetsTable(unittest.TestCase):
         speed = self.cells()[4]
         self.assertEqual(speed, ["not measured: run `bash bench/speed.sh`"] * 2)
 
+    def test_memory_of_a_shorter_sequence_is_not_measured(self):
+        write_csv(os.path.join(self.dir, "memory.csv"), ["config", "frames", "peak_rss_mb"],
+                  [["paper", 90, 100.0], ["occlusion", 900, 100.0]])
+        memory = self.cells()[5]
+        self.assertEqual(memory, [
+            "not measured at 900 frames (90 at most): run `bash bench/memory.sh`",
+            "**met**: 100.0 MB at 900 frames"])
+
     def test_a_missing_column_is_an_error_naming_file_and_column(self):
         path = os.path.join(self.dir, "memory.csv")
         write_csv(path, ["config", "frames", "rss"], [["paper", 900, 1.0]])
