@@ -171,11 +171,14 @@ TARGETS = [
 ]
 
 
-def cell_text(results, cell, c):
+def cell_text(results, source, cell, c):
     try:
         value, ok = cell(results, c)
     except NotMeasured as e:
         return str(e)
+    except (ValueError, ZeroDivisionError) as e:
+        raise BadResults("%s: a figure of the %s column(s) is not a positive number (%s)"
+                         % (os.path.join(results.folder, source), c, e))
     return "%s: %s" % ("**met**" if ok else "**missed**", value)
 
 
@@ -184,7 +187,7 @@ def main(argv):
         sys.exit("usage: targets_table.py RESULTS_DIR (a folder of benchmark results)")
     results = Results(argv[1])
     try:
-        rows = [(text, source, [cell_text(results, cell, c) for c in CONFIGS])
+        rows = [(text, source, [cell_text(results, source, cell, c) for c in CONFIGS])
                 for text, source, cell in TARGETS]
     except BadResults as e:
         sys.exit("targets_table: %s" % e)

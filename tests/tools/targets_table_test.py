@@ -111,6 +111,18 @@ class TargetsTable(unittest.TestCase):
         self.assertIn(path + ": no column peak_rss_mb", result.stderr)
         self.assertIn("bench/memory.sh", result.stderr)
 
+    def test_a_figure_that_is_not_a_number_is_an_error_naming_the_file(self):
+        path = os.path.join(self.dir, "accuracy.csv")
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(text.replace("0.0129", "-", 1))
+        result = self.run_script()
+        self.assertEqual(result.returncode, 1)
+        self.assertEqual(result.stdout, "")
+        self.assertIn(path + ": a figure of the paper column(s) is not a positive number",
+                      result.stderr)
+
     def test_not_a_folder(self):
         result = subprocess.run([sys.executable, SCRIPT, os.path.join(self.dir, "nothing")],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
