@@ -92,7 +92,8 @@ def static_cell(results, c):
         ok &= median <= MAX_WORSE
         parts.append("%s %+.1f%% (mean %+.1f%%)" % (name.split("_")[0], 100 * median, 100 * mean))
     if not parts:
-        return "no real static sequence measured", False
+        raise NotMeasured("not measured: no real static sequence in accuracy_seeds.csv (they need "
+                          "../shared; run `bash bench/accuracy.sh`)")
     return ", ".join(parts), ok
 
 
@@ -101,7 +102,8 @@ def fr1_cell(results, c):
                                                        ("sequence", c + "_rpe"))
             if r["sequence"] == "fr1_rpy_head150"]
     if not mine:
-        return "fr1_rpy_head150 not measured (no ../shared data)", False
+        raise NotMeasured("not measured: no fr1_rpy_head150 in accuracy_seeds.csv (it needs "
+                          "../shared; run `bash bench/accuracy.sh`)")
     median = statistics.median(mine)
     return ("median %.4f, max %.4f m/s over %d seeds" % (median, max(mine), len(mine)),
             median <= MAX_FR1)
@@ -113,7 +115,7 @@ def speed_cell(results, c):
                                      "rgbd_odometry_median_ms", "ratio_to_rgbd_odometry"))
             if r["config"] == c and not r["overrides"]]
     if not rows:
-        return "not in speed.csv", False
+        raise NotMeasured("not measured: no %s run in speed.csv (run `bash bench/speed.sh`)" % c)
     ratios = [float(r["ratio_to_rgbd_odometry"]) for r in rows]
     text = ", ".join("%s %.2f ms = %.2fx (peer %.2f ms)" % (
         "fr1" if r["sequence"].startswith("rgbd_dataset_freiburg1") else r["sequence"],
@@ -129,7 +131,7 @@ def memory_cell(results, c):
     rows = [r for r in results.rows("memory.csv", "memory.sh", ("config", "frames", "peak_rss_mb"))
             if r["config"] == c]
     if not rows:
-        return "not in memory.csv", False
+        raise NotMeasured("not measured: no %s run in memory.csv (run `bash bench/memory.sh`)" % c)
     longest = max(rows, key=lambda r: int(r["frames"]))
     if int(longest["frames"]) < MEMORY_FRAMES:
         raise NotMeasured("not measured at %d frames (%s at most): run `bash bench/memory.sh`"

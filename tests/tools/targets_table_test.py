@@ -94,6 +94,23 @@ class TargetsTable(unittest.TestCase):
         speed = self.cells()[4]
         self.assertEqual(speed, ["not measured: run `bash bench/speed.sh`"] * 2)
 
+    def test_a_config_or_sequence_not_in_a_file_is_not_measured(self):
+        write_csv(os.path.join(self.dir, "accuracy_seeds.csv"),
+                  ["sequence", "seed", "paper_rpe", "occlusion_rpe", "baseline_rpe"],
+                  [["fr2_desk_head50", 1, 0.02, 0.02, 0.02]])
+        write_csv(os.path.join(self.dir, "speed.csv"),
+                  ["sequence", "config", "overrides", "frames", "dynvo_median_ms",
+                   "rgbd_odometry_median_ms", "ratio_to_rgbd_odometry"],
+                  [["synth", "paper", "", 150, 10.0, 30.0, 0.33]])
+        cells = self.cells()
+        self.assertEqual(cells[2], ["not measured: no real static sequence in accuracy_seeds.csv "
+                                    "(they need ../shared; run `bash bench/accuracy.sh`)"] * 2)
+        self.assertEqual(cells[3], ["not measured: no fr1_rpy_head150 in accuracy_seeds.csv "
+                                    "(it needs ../shared; run `bash bench/accuracy.sh`)"] * 2)
+        self.assertEqual(cells[4], [
+            "**met**: synth 10.00 ms = 0.33x (peer 30.00 ms)",
+            "not measured: no occlusion run in speed.csv (run `bash bench/speed.sh`)"])
+
     def test_memory_of_a_shorter_sequence_is_not_measured(self):
         write_csv(os.path.join(self.dir, "memory.csv"), ["config", "frames", "peak_rss_mb"],
                   [["paper", 90, 100.0], ["occlusion", 900, 100.0]])
