@@ -6,8 +6,12 @@ import csv, glob, json, os, sys
 work, cores, cpu, csv_path = sys.argv[1], sys.argv[2], sys.argv[3] or "unknown CPU", sys.argv[4]
 runs = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(work, "*.json")))]
 
+def config_name(j):
+    return os.path.basename(j["config"]).replace(".json", "")
+
+
 def config_label(j):
-    label = os.path.basename(j["config"]).replace(".json", "")
+    label = config_name(j)
     if j.get("overrides"):
         label += " (" + ", ".join(j["overrides"]) + ")"
     return label
@@ -19,7 +23,7 @@ with open(csv_path, "w", newline="") as f:
                 "ratio_to_rgbd_odometry"])
     for j in runs:
         m = j["methods"]
-        w.writerow([j["dataset"], os.path.basename(j["config"]).replace(".json", ""),
+        w.writerow([j["dataset"], config_name(j),
                     " ".join(j.get("overrides") or []), j["frames"], m["dynvo"]["median_ms"],
                     m["dynvo"]["mean_ms"], m["dynvo"]["p90_ms"],
                     m["opencv_rgbd_odometry"]["median_ms"], m["opencv_icp_odometry"]["median_ms"],
