@@ -10,6 +10,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev
   python3 python3-numpy python3-matplotlib python3-pil
+  opencv-doc
 )
 
 missing=()

@@ -39,8 +39,17 @@ Scenario ParseScenario(const std::string& name, const std::string& key) {
   if (name == "walking_toward") return Scenario::kWalkingToward;
   if (name == "two_crossing") return Scenario::kTwoCrossing;
   if (name == "sitting_sway") return Scenario::kSittingSway;
+  if (name == "tum_walking") return Scenario::kTumWalking;
+  if (name == "tum_toward") return Scenario::kTumToward;
+  if (name == "tum_away") return Scenario::kTumAway;
+  if (name == "tum_sitting") return Scenario::kTumSitting;
   throw InputError(key + " must be one of none, walking_across, walking_toward, two_crossing, "
-                         "sitting_sway, got '" + name + "'");
+                         "sitting_sway, tum_walking, tum_toward, tum_away, tum_sitting, got '" + name + "'");
+}
+
+bool IsTumScenario(Scenario scenario) {
+  return scenario == Scenario::kTumWalking || scenario == Scenario::kTumToward || scenario == Scenario::kTumAway ||
+         scenario == Scenario::kTumSitting;
 }
 
 std::string ScenarioName(Scenario scenario) {
@@ -50,6 +59,10 @@ std::string ScenarioName(Scenario scenario) {
     case Scenario::kWalkingToward: return "walking_toward";
     case Scenario::kTwoCrossing: return "two_crossing";
     case Scenario::kSittingSway: return "sitting_sway";
+    case Scenario::kTumWalking: return "tum_walking";
+    case Scenario::kTumToward: return "tum_toward";
+    case Scenario::kTumAway: return "tum_away";
+    case Scenario::kTumSitting: return "tum_sitting";
   }
   return "none";
 }
@@ -199,6 +212,7 @@ std::vector<MovingPerson> MakeScenarioPeople(Scenario scenario, std::uint32_t se
       people.push_back(p);
       break;
     }
+    default: break;  // the TUM scenarios' people are articulated photos (synth/stage_people.h)
   }
   return people;
 }

@@ -18,9 +18,19 @@ enum class Scenario {
   kWalkingToward,  // one person walks toward the camera and away again
   kTwoCrossing,    // two people cross each other in opposite directions
   kSittingSway,    // a person seated behind a desk sways and turns (low dynamic)
+  // As TUM films its dynamic sequences: articulated people from photos, in view from the
+  // first frame, 1-3 m from the camera (see synth/stage_people.h).
+  kTumWalking,     // two people walking across and around the scene
+  kTumToward,      // one person walking toward the camera along the optical axis, then back
+  kTumAway,        // one person walking away from the camera along the optical axis, then back
+  kTumSitting,     // two seated people moving head and arms; one stands up and sits down
 };
 
-// Parses "none", "walking_across", "walking_toward", "two_crossing", "sitting_sway";
+// True for the kTum* scenarios (articulated photo people, in view from the first frame).
+bool IsTumScenario(Scenario scenario);
+
+// Parses "none", "walking_across", "walking_toward", "two_crossing", "sitting_sway",
+// "tum_walking", "tum_toward", "tum_away", "tum_sitting";
 // throws InputError naming `key` otherwise.
 Scenario ParseScenario(const std::string& name, const std::string& key);
 std::string ScenarioName(Scenario scenario);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -13,6 +14,7 @@
 #include "dataset/image_list.h"
 #include "dataset/stamp_matching.h"
 #include "dataset/tum_dataset.h"
+#include "synth/sensor_noise.h"
 #include "synth/trajectory_sampling.h"
 #include "synth/tum_writer.h"
 
@@ -20,8 +22,6 @@ namespace dynvo {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string Number(double value) {
   std::ostringstream out;
@@ -33,16 +33,6 @@ void RequireRange(double value, double lo, double hi, const char* key) {
   if (!(value >= lo && value <= hi))
     throw InputError(std::string("insert.") + key + " must be in [" + Number(lo) + ", " + Number(hi) + "], got " +
                      Number(value));
-}
-
-// Position along a ping-pong path between a and b after `walked` metres.
-Eigen::Vector2d PingPong(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double walked) {
-  const double length = (b - a).norm();
-  if (length < 1e-9) return a;
-  double along = std::fmod(walked, 2 * length);
-  if (along < 0) along += 2 * length;
-  const double x = along <= length ? along : 2 * length - along;
-  return a + (b - a) * (x / length);
 }
 
 void CopyFile(const fs::path& from, const fs::path& to) {
@@ -63,11 +53,11 @@ void InsertionOptions::Check() const {
   RequireRange(max_pose_gap_s, 0.001, 10.0, "max_pose_gap_s");
 }
 
-InsertionPlan PlanInsertion(const InsertionOptions& options, const PersonCutout& cutout,
-                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
-                            const Camera& camera) {
-  options.Check();
-  if (cutout.bgra.empty() || cutout.bgra.type() != CV_8UC4) throw InputError("person cut-out must be 8-bit BGRA");
+namespace {
+
+// The stage: origin on the floor below the reference camera, y its horizontal forward.
+Pose WorldFromStage(const InsertionOptions& options, const Trajectory& groundtruth, double first_stamp,
+                    double last_stamp) {
   const double middle = 0.5 * (first_stamp + last_stamp);
   Pose reference;
   if (!InterpolatePose(groundtruth, middle, options.max_pose_gap_s, &reference))
@@ -83,94 +73,62 @@ InsertionPlan PlanInsertion(const InsertionOptions& options, const PersonCutout&
   forward -= forward.dot(up) * up;
   if (forward.norm() < 0.1) throw InputError("the reference camera looks straight up or down: no walking plane");
   forward.normalize();
-  const Eigen::Vector3d right = forward.cross(up);
+  Pose world_from_stage = Pose::Identity();
+  world_from_stage.linear().col(0) = forward.cross(up);
+  world_from_stage.linear().col(1) = forward;
+  world_from_stage.linear().col(2) = up;
+  double camera_height = options.camera_height_m;
+  if (camera_height == 0 && IsTumScenario(options.preset)) {
+    const Eigen::Vector3d axis = reference.linear().col(2);
+    const double below = -axis.dot(up) / std::max(0.1, axis.dot(forward));  // metres down per metre ahead
+    camera_height = 0.5 * options.person_height_m + (options.distance_m > 0 ? options.distance_m : 2.0) * below;
+  } else if (camera_height == 0) {
+    camera_height = 1.5;
+  }
+  world_from_stage.translation() = reference.translation() - camera_height * up;
+  return world_from_stage;
+}
 
+}  // namespace
+
+InsertionPlan PlanInsertion(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
+                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
+                            const Camera& camera) {
+  options.Check();
+  if (cutouts.empty()) throw InputError("no person cut-out to insert");
   InsertionPlan plan;
-  plan.world_from_stage.linear().col(0) = right;
-  plan.world_from_stage.linear().col(1) = forward;
-  plan.world_from_stage.linear().col(2) = up;
-  plan.world_from_stage.translation() = reference.translation() - options.camera_height_m * up;
+  plan.world_from_stage = WorldFromStage(options, groundtruth, first_stamp, last_stamp);
   plan.start_stamp = first_stamp;
-  plan.person_height_m = options.person_height_m;
-  plan.person_width_m = options.person_height_m * cutout.bgra.cols / cutout.bgra.rows;
-  const double texel = options.person_height_m / cutout.bgra.rows;
-  plan.textures.push_back(MakeTexture(cutout.bgra, texel));
-  cv::Mat mirrored;
-  cv::flip(cutout.bgra, mirrored, 1);
-  plan.textures.push_back(MakeTexture(mirrored, texel));
-
-  // Half the horizontal field of view: walkers turn where they are out of view.
-  const double tan_half = std::max(camera.cx, camera.width - camera.cx) / camera.fx;
-  const double v = options.walk_speed_mps;
-  const double d = options.distance_m > 0 ? options.distance_m : 2.0;
-  const double duration = last_stamp - first_stamp;
-  auto across = [&](double depth, double direction, double speed, int texture) {
-    const double half = std::max(depth * tan_half + plan.person_width_m + 0.3, 0.5 * speed * duration + 0.2);
-    InsertionPlan::Walker w;
-    w.from = {-direction * half, depth};
-    w.to = {direction * half, depth};
-    w.speed_mps = speed;
-    w.texture = texture;
-    return w;
-  };
-  switch (options.preset) {
-    case Scenario::kWalkingAcross: plan.walkers.push_back(across(d, 1.0, v, 0)); break;
-    case Scenario::kTwoCrossing:
-      plan.walkers.push_back(across(d, 1.0, v, 0));
-      plan.walkers.push_back(across(d + 1.2, -1.0, 1.15 * v, 1));
-      break;
-    case Scenario::kWalkingToward: {
-      InsertionPlan::Walker w;
-      w.from = {0.15, d + 2.5};
-      w.to = {0.1, std::max(0.6, d - 1.2)};
-      w.speed_mps = v;
-      plan.walkers.push_back(w);
-      break;
-    }
-    case Scenario::kSittingSway: {
-      InsertionPlan::Walker w;
-      w.from = {0.3, d};
-      w.to = w.from;
-      w.sway = true;
-      plan.walkers.push_back(w);
-      break;
-    }
-    case Scenario::kNone: break;
+  for (const PersonCutout& cutout : cutouts) plan.dolls.push_back(MakeArticulatedCutout(cutout, options.person_height_m));
+  for (const PersonCutout& cutout : cutouts) {  // mirror images: a second person from one photo
+    PersonCutout mirrored;
+    cv::flip(cutout.bgra, mirrored.bgra, 1);
+    plan.dolls.push_back(MakeArticulatedCutout(mirrored, options.person_height_m));
+  }
+  StageGeometry geometry;
+  geometry.distance_m = options.distance_m > 0 ? options.distance_m : 2.0;
+  geometry.speed_mps = options.walk_speed_mps;
+  geometry.tan_half_fov = std::max(camera.cx, camera.width - camera.cx) / camera.fx;
+  geometry.person_width_m = plan.dolls.front().width_m;
+  geometry.duration_s = last_stamp - first_stamp;
+  plan.people = PlanStagePeople(options.preset, geometry);
+  // Person k takes cut-out k; with fewer cut-outs than people, the mirror images follow.
+  for (size_t k = 0; k < plan.people.size(); ++k) {
+    const size_t n = cutouts.size();
+    plan.people[k].doll = static_cast<int>(k < n ? k : n + (k - n) % n);
   }
   return plan;
 }
 
 std::vector<TexturedQuad> InsertionQuadsAt(const InsertionPlan& plan, double stamp) {
-  std::vector<TexturedQuad> quads;
-  const double t = stamp - plan.start_stamp;
-  for (size_t i = 0; i < plan.walkers.size(); ++i) {
-    const InsertionPlan::Walker& w = plan.walkers[i];
-    Eigen::Vector2d at = PingPong(w.from, w.to, w.speed_mps * t);
-    double lean = 0;
-    if (w.sway) {
-      at.x() += 0.08 * std::sin(2 * kPi * t / 3.1);
-      lean = 0.05 * std::sin(2 * kPi * t / 3.1 + 0.6);  // radians about the feet
-    }
-    const double h = plan.person_height_m, half = 0.5 * plan.person_width_m;
-    // Cut-out plane faces the reference camera (stage -y); texture rows run downwards.
-    const Eigen::Vector3d up(std::sin(lean), 0, std::cos(lean)), side(std::cos(lean), 0, -std::sin(lean));
-    const Eigen::Vector3d feet(at.x(), at.y(), 0);
-    TexturedQuad q;
-    q.origin = plan.world_from_stage * (feet - half * side + h * up);
-    q.edge_u = plan.world_from_stage.linear() * (2 * half * side);
-    q.edge_v = plan.world_from_stage.linear() * (-h * up);
-    q.texture = plan.textures.at(static_cast<size_t>(w.texture));
-    q.shade = 1.0f;
-    q.object_id = static_cast<int>(i) + 1;
-    quads.push_back(q);
-  }
-  return quads;
+  return StagePeopleQuadsAt(plan.people, plan.dolls, plan.world_from_stage, stamp - plan.start_stamp);
 }
 
-int CompositePeople(const RenderResult& people, double depth_factor, cv::Mat* bgr, cv::Mat* depth16, cv::Mat* mask) {
+int CompositePeople(const RenderResult& people, double depth_factor, cv::Mat* bgr, cv::Mat* depth16,
+                    cv::Mat* person_id) {
   CV_Assert(bgr->type() == CV_8UC3 && depth16->type() == CV_16U && bgr->size() == people.bgr.size() &&
             depth16->size() == people.bgr.size());
-  *mask = cv::Mat::zeros(bgr->size(), CV_8U);
+  *person_id = cv::Mat::zeros(bgr->size(), CV_16U);
   int written = 0;
   for (int y = 0; y < bgr->rows; ++y) {
     const std::uint16_t* id = people.object_id.ptr<std::uint16_t>(y);
@@ -178,21 +136,158 @@ int CompositePeople(const RenderResult& people, double depth_factor, cv::Mat* bg
     const cv::Vec3b* colour = people.bgr.ptr<cv::Vec3b>(y);
     cv::Vec3b* out = bgr->ptr<cv::Vec3b>(y);
     std::uint16_t* depth = depth16->ptr<std::uint16_t>(y);
-    uchar* m = mask->ptr<uchar>(y);
+    std::uint16_t* who = person_id->ptr<std::uint16_t>(y);
     for (int x = 0; x < bgr->cols; ++x) {
       if (id[x] == 0) continue;
       const double person = std::round(z[x] * depth_factor);
       if (depth[x] != 0 && !(person < depth[x])) continue;  // the real surface is nearer
       out[x] = colour[x];
       depth[x] = static_cast<std::uint16_t>(std::clamp(person, 1.0, 65535.0));
-      m[x] = 255;
+      who[x] = id[x];
       ++written;
     }
   }
   return written;
 }
 
-InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const PersonCutout& cutout,
+void AddPersonDepthNoise(const cv::Mat& person_id, double depth_factor, std::uint32_t seed, cv::Mat* depth16) {
+  CV_Assert(person_id.type() == CV_16U && depth16->type() == CV_16U && person_id.size() == depth16->size());
+  cv::Mat clean_m(depth16->size(), CV_32F, cv::Scalar(0));
+  depth16->convertTo(clean_m, CV_32F, 1.0 / depth_factor);
+  clean_m.setTo(0, person_id == 0);
+  SensorNoiseOptions noise;
+  noise.depth_factor = depth_factor;
+  noise.depth_max_m = std::min(noise.depth_max_m, 65535.0 / depth_factor);
+  const cv::Mat sensed = MakeSensorDepth(noise, seed, clean_m);
+  sensed.copyTo(*depth16, person_id != 0);
+}
+
+namespace {
+
+// The rgb and depth lists of a TUM folder and the depth image matched to each colour image.
+struct ImagePairs {
+  std::vector<ImageListEntry> rgb, depth;
+  std::vector<double> rgb_stamps;
+  std::vector<int> depth_of_rgb;  // -1: no depth image within the tolerance
+};
+
+ImagePairs ReadImagePairs(const fs::path& in, double max_time_difference) {
+  ImagePairs pairs;
+  pairs.rgb = ReadImageList((in / "rgb.txt").string());
+  pairs.depth = ReadImageList((in / "depth.txt").string());
+  std::vector<double> depth_stamps;
+  for (const ImageListEntry& e : pairs.rgb) pairs.rgb_stamps.push_back(e.stamp);
+  for (const ImageListEntry& e : pairs.depth) depth_stamps.push_back(e.stamp);
+  pairs.depth_of_rgb.assign(pairs.rgb.size(), -1);
+  for (const auto& [r, d] : MatchStamps(pairs.rgb_stamps, depth_stamps, max_time_difference))
+    pairs.depth_of_rgb[r] = static_cast<int>(d);
+  return pairs;
+}
+
+cv::Mat ReadImageOfCamera(const std::string& path, int type, const Camera& camera, const char* expected) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.type() != type || image.cols != camera.width || image.rows != camera.height)
+    ThrowFileError(path, 0, std::string("expected ") + expected + " of the camera's size");
+  return image;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(mid), values.end());
+  return values[mid];
+}
+
+// The distance of the people: for the TUM presets, the farthest in 1-3 m at which they cover
+// at least a fifth of the image (median over a few spread frames, the first among them; TUM's
+// people cover 10-50%), else the one at which they cover the most. For the other presets, the
+// distance in 1-4 m that shows the largest part of the bodies: visible pixels times distance
+// squared (a body's image area falls with it), neither occluded nor cut off by the border.
+double ChooseDistance(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
+                      const TumDataset& sequence, const fs::path& in, const ImagePairs& pairs) {
+  const Camera camera = sequence.raw_camera();
+  const Renderer renderer(camera);
+  std::vector<std::pair<size_t, cv::Mat>> probes;  // rgb index, real depth
+  for (int k = 0; k <= 5; ++k) {
+    const size_t i = (pairs.rgb.size() - 1) * static_cast<size_t>(k) / 6;
+    if (pairs.depth_of_rgb[i] < 0) continue;
+    const std::string path = (in / pairs.depth[static_cast<size_t>(pairs.depth_of_rgb[i])].path).string();
+    probes.emplace_back(i, ReadImageOfCamera(path, CV_16U, camera, "a 16-bit 1-channel PNG"));
+  }
+  const bool tum = IsTumScenario(options.preset);
+  InsertionOptions chosen = options;
+  double best_score = -1, best = 2.0;
+  for (double d = tum ? 0.7 : 1.0; d <= (tum ? 3.01 : 4.01); d += tum ? 0.1 : 0.2) {
+    chosen.distance_m = d;
+    const InsertionPlan plan = PlanInsertion(chosen, cutouts, sequence.groundtruth(), pairs.rgb_stamps.front(),
+                                             pairs.rgb_stamps.back(), camera);
+    std::vector<double> coverage;
+    for (const auto& [i, real_depth] : probes) {
+      Pose world_from_camera;
+      if (!InterpolatePose(sequence.groundtruth(), pairs.rgb_stamps[i], options.max_pose_gap_s, &world_from_camera))
+        continue;
+      cv::Mat bgr(real_depth.size(), CV_8UC3), depth16 = real_depth.clone(), ids;
+      const RenderResult people = renderer.Render(InsertionQuadsAt(plan, pairs.rgb_stamps[i]), world_from_camera.inverse());
+      coverage.push_back(double(CompositePeople(people, sequence.depth_factor(), &bgr, &depth16, &ids)) / ids.total());
+    }
+    double sum = 0;
+    for (double c : coverage) sum += c;
+    const double score = tum ? (Median(coverage) >= 0.2 ? 1.0 + d : Median(coverage)) : sum * d * d;
+    if (score > best_score) {
+      best_score = score;
+      best = d;
+    }
+  }
+  return best;
+}
+
+// people.txt and stats.csv, a line per person and frame and a line per frame.
+struct LabelFiles {
+  std::string people = "# people inserted by dynvo-insert-people: one line per person and colour image\n"
+                       "# state: moving when a body point moves faster than 0.2 m/s, else still;\n"
+                       "# visible_pixels: pixels of the person in masks/ (0: out of view or hidden)\n"
+                       "# timestamp id state visible_pixels\n";
+  std::string stats = "timestamp,coverage,people_in_view,people_moving\n";
+  std::vector<double> coverage;
+
+  void Add(const InsertionPlan& plan, double stamp, const cv::Mat& person_id) {
+    std::vector<int> pixels(plan.people.size() + 1, 0);
+    for (int y = 0; y < person_id.rows; ++y) {
+      const std::uint16_t* id = person_id.ptr<std::uint16_t>(y);
+      for (int x = 0; x < person_id.cols; ++x)
+        if (id[x] > 0 && id[x] < pixels.size()) ++pixels[id[x]];
+    }
+    int in_view = 0, moving = 0, total = 0;
+    for (size_t k = 0; k < plan.people.size(); ++k) {
+      const StagePerson& person = plan.people[k];
+      const bool is_moving = StagePersonSpeed(person, plan.dolls.at(static_cast<size_t>(person.doll)),
+                                              stamp - plan.start_stamp) > kMovingSpeedMps;
+      const int visible = pixels[k + 1];
+      people += FormatStamp(stamp) + " " + std::to_string(k + 1) + (is_moving ? " moving " : " still ") +
+                std::to_string(visible) + "\n";
+      in_view += visible > 0;
+      moving += visible > 0 && is_moving;
+      total += visible;
+    }
+    const double share = double(total) / person_id.total();
+    coverage.push_back(share);
+    std::ostringstream line;
+    line << FormatStamp(stamp) << "," << std::fixed << std::setprecision(5) << share << "," << in_view << ","
+         << moving << "\n";
+    stats += line.str();
+  }
+};
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out.flush()) ThrowFileError(path.string(), 0, "cannot write file");
+}
+
+
+}  // namespace
+
+InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std::vector<PersonCutout>& cutouts,
                                           const InsertionOptions& options, const std::string& out_folder) {
   options.Check();
   TumDatasetOptions dataset_options;
@@ -201,103 +296,64 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const Pers
   const fs::path in(dataset), out(out_folder);
   if (!sequence.has_groundtruth() || sequence.groundtruth().empty())
     ThrowFileError((in / "groundtruth.txt").string(), 0, "missing or empty: people are placed with the groundtruth");
-  const std::vector<ImageListEntry> rgb = ReadImageList((in / "rgb.txt").string());
-  const std::vector<ImageListEntry> depth = ReadImageList((in / "depth.txt").string());
-  std::vector<double> rgb_stamps, depth_stamps;
-  for (const ImageListEntry& e : rgb) rgb_stamps.push_back(e.stamp);
-  for (const ImageListEntry& e : depth) depth_stamps.push_back(e.stamp);
-  std::vector<int> depth_of_rgb(rgb.size(), -1);
-  for (const auto& [r, d] : MatchStamps(rgb_stamps, depth_stamps, dataset_options.max_time_difference))
-    depth_of_rgb[r] = static_cast<int>(d);
-
+  const ImagePairs pairs = ReadImagePairs(in, dataset_options.max_time_difference);
+  if (pairs.rgb.empty()) ThrowFileError((in / "rgb.txt").string(), 0, "lists no image");
   const Camera camera = sequence.raw_camera();
-  double summary_distance = options.distance_m;
   const double factor = sequence.depth_factor();
-  const Renderer renderer(camera);
   InsertionOptions chosen = options;
-  if (chosen.distance_m == 0) {
-    // The distance that shows the largest part of the people's bodies: visible pixels summed
-    // over a few spread frames, times distance squared (a body's image area falls with it), so
-    // neither occluded nor cut off by the image border. (Plain pixel counts would always pick
-    // people right in front of the lens.)
-    std::vector<std::pair<size_t, cv::Mat>> probes;  // rgb index, real depth
-    for (int k = 1; k <= 5; ++k) {
-      const size_t i = (rgb.size() - 1) * static_cast<size_t>(k) / 6;
-      if (depth_of_rgb[i] < 0) continue;
-      const std::string path = (in / depth[static_cast<size_t>(depth_of_rgb[i])].path).string();
-      cv::Mat depth16 = cv::imread(path, cv::IMREAD_UNCHANGED);
-      if (depth16.type() != CV_16U || depth16.cols != camera.width || depth16.rows != camera.height)
-        ThrowFileError(path, 0, "expected a 16-bit 1-channel PNG of the camera's size");
-      probes.emplace_back(i, depth16);
-    }
-    double best_score = -1;
-    for (double d = 1.0; d <= 4.01; d += 0.2) {
-      chosen.distance_m = d;
-      const InsertionPlan plan = PlanInsertion(chosen, cutout, sequence.groundtruth(), rgb_stamps.front(),
-                                               rgb_stamps.back(), camera);
-      int pixels = 0;
-      for (const auto& [i, real_depth] : probes) {
-        Pose world_from_camera;
-        if (!InterpolatePose(sequence.groundtruth(), rgb[i].stamp, options.max_pose_gap_s, &world_from_camera))
-          continue;
-        cv::Mat bgr(real_depth.size(), CV_8UC3), depth16 = real_depth.clone(), mask;
-        pixels += CompositePeople(renderer.Render(InsertionQuadsAt(plan, rgb[i].stamp), world_from_camera.inverse()),
-                                  factor, &bgr, &depth16, &mask);
-      }
-      if (pixels * d * d > best_score) {
-        best_score = pixels * d * d;
-        summary_distance = d;
-      }
-    }
-    chosen.distance_m = summary_distance;
-  }
-  const InsertionPlan plan = PlanInsertion(chosen, cutout, sequence.groundtruth(), rgb_stamps.front(),
-                                           rgb_stamps.back(), camera);
+  if (chosen.distance_m == 0) chosen.distance_m = ChooseDistance(options, cutouts, sequence, in, pairs);
+  const InsertionPlan plan =
+      PlanInsertion(chosen, cutouts, sequence.groundtruth(), pairs.rgb_stamps.front(), pairs.rgb_stamps.back(), camera);
 
   // Everything as it was first; frames with people are rewritten below.
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt", "camera.json"})
     if (fs::is_regular_file(in / name)) CopyFile(in / name, out / name);
   if (!fs::is_regular_file(in / "camera.json")) WriteCameraFile((out / "camera.json").string(), camera, factor);
-  for (const ImageListEntry& e : rgb) CopyFile(in / e.path, out / e.path);
-  for (const ImageListEntry& e : depth) CopyFile(in / e.path, out / e.path);
+  for (const ImageListEntry& e : pairs.rgb) CopyFile(in / e.path, out / e.path);
+  for (const ImageListEntry& e : pairs.depth) CopyFile(in / e.path, out / e.path);
   fs::create_directories(out / "masks");
 
+  const Renderer renderer(camera);
   InsertionSummary summary;
+  LabelFiles labels;
   std::string masks_list = "# dynamic masks (255 = pixel of an inserted person), one per color image\n"
                            "# people inserted by dynvo-insert-people into " + sequence.name() +
                            "\n# timestamp filename\n";
-  double ratio_sum = 0;
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    const std::string mask_name = "masks/" + FormatStamp(rgb[i].stamp) + ".png";
-    masks_list += FormatStamp(rgb[i].stamp) + " " + mask_name + "\n";
-    cv::Mat mask = cv::Mat::zeros(camera.height, camera.width, CV_8U);
+  for (size_t i = 0; i < pairs.rgb.size(); ++i) {
+    const double stamp = pairs.rgb_stamps[i];
+    const std::string mask_name = "masks/" + FormatStamp(stamp) + ".png";
+    masks_list += FormatStamp(stamp) + " " + mask_name + "\n";
+    cv::Mat person_id = cv::Mat::zeros(camera.height, camera.width, CV_16U);
     Pose world_from_camera;
-    const bool posed = InterpolatePose(sequence.groundtruth(), rgb[i].stamp, options.max_pose_gap_s, &world_from_camera);
+    const bool posed = InterpolatePose(sequence.groundtruth(), stamp, options.max_pose_gap_s, &world_from_camera);
     if (!posed) ++summary.frames_without_pose;
-    if (posed && depth_of_rgb[i] >= 0) {
-      const std::string rgb_path = (in / rgb[i].path).string();
-      const std::string depth_path = (in / depth[static_cast<size_t>(depth_of_rgb[i])].path).string();
-      cv::Mat bgr = cv::imread(rgb_path, cv::IMREAD_UNCHANGED);
-      cv::Mat depth16 = cv::imread(depth_path, cv::IMREAD_UNCHANGED);
-      if (bgr.type() != CV_8UC3 || bgr.cols != camera.width || bgr.rows != camera.height)
-        ThrowFileError(rgb_path, 0, "expected an 8-bit 3-channel PNG of the camera's size");
-      if (depth16.type() != CV_16U || depth16.size() != bgr.size())
-        ThrowFileError(depth_path, 0, "expected a 16-bit 1-channel PNG of the camera's size");
-      const RenderResult people =
-          renderer.Render(InsertionQuadsAt(plan, rgb[i].stamp), world_from_camera.inverse());
-      if (CompositePeople(people, factor, &bgr, &depth16, &mask) > 0) {
-        WritePng((out / rgb[i].path).string(), bgr);
-        WritePng((out / depth[static_cast<size_t>(depth_of_rgb[i])].path).string(), depth16);
+    const int d = pairs.depth_of_rgb[i];
+    if (posed && d >= 0) {
+      const std::string rgb_path = (in / pairs.rgb[i].path).string();
+      const std::string depth_path = (in / pairs.depth[static_cast<size_t>(d)].path).string();
+      cv::Mat bgr = ReadImageOfCamera(rgb_path, CV_8UC3, camera, "an 8-bit 3-channel PNG");
+      cv::Mat depth16 = ReadImageOfCamera(depth_path, CV_16U, camera, "a 16-bit 1-channel PNG");
+      const RenderResult people = renderer.Render(InsertionQuadsAt(plan, stamp), world_from_camera.inverse());
+      if (CompositePeople(people, factor, &bgr, &depth16, &person_id) > 0) {
+        AddPersonDepthNoise(person_id, factor, options.seed * 7919u + static_cast<std::uint32_t>(i), &depth16);
+        WritePng((out / pairs.rgb[i].path).string(), bgr);
+        WritePng((out / pairs.depth[static_cast<size_t>(d)].path).string(), depth16);
         ++summary.frames_with_people;
+        if (summary.first_frame_with_people < 0) summary.first_frame_with_people = static_cast<int>(i);
       }
     }
-    ratio_sum += double(cv::countNonZero(mask)) / mask.total();
-    WritePng((out / mask_name).string(), mask);
+    labels.Add(plan, stamp, person_id);
+    WritePng((out / mask_name).string(), person_id > 0);
   }
-  std::ofstream(out / "masks.txt") << masks_list;
-  summary.frames = static_cast<int>(rgb.size());
+  WriteText(out / "masks.txt", masks_list);
+  WriteText(out / "people.txt", labels.people);
+  WriteText(out / "stats.csv", labels.stats);
+  summary.frames = static_cast<int>(pairs.rgb.size());
   summary.distance_m = chosen.distance_m;
-  summary.mean_dynamic_ratio = rgb.empty() ? 0 : ratio_sum / rgb.size();
+  double sum = 0;
+  for (double c : labels.coverage) sum += c;
+  summary.mean_dynamic_ratio = sum / labels.coverage.size();
+  summary.median_coverage = Median(labels.coverage);
   return summary;
 }
 

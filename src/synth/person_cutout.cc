@@ -41,10 +41,17 @@ PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iter
   if (box.width < 8 || box.height < 8 || (box & cv::Rect(0, 0, bgr.cols, bgr.rows)) != box)
     throw InputError(source + ": person box must lie inside the image and be at least 8x8 pixels");
   if (iterations < 1) throw InputError(source + ": GrabCut iterations must be >= 1");
+  // Outside the box: background; inside: probably the person, and surely so along a stroke
+  // down the box's middle (head, torso and the legs' gap of an upright person), which keeps
+  // GrabCut from dropping a small person's head or legs into the background.
   cv::Mat labels(bgr.size(), CV_8U, cv::Scalar(cv::GC_BGD)), bgd, fgd;
+  labels(box).setTo(cv::GC_PR_FGD);
+  const int middle = box.x + box.width / 2;
+  labels(cv::Range(box.y + box.height * 5 / 100, box.y + box.height * 97 / 100), cv::Range(middle - 1, middle + 1))
+      .setTo(cv::GC_FGD);
   // GrabCut initialises its colour models with k-means on OpenCV's thread RNG.
   cv::theRNG().state = 0x5DEECE66DULL ^ seed;
-  cv::grabCut(bgr, labels, box, bgd, fgd, iterations, cv::GC_INIT_WITH_RECT);
+  cv::grabCut(bgr, labels, box, bgd, fgd, iterations, cv::GC_INIT_WITH_MASK);
   cv::Mat mask = (labels == cv::GC_FGD) | (labels == cv::GC_PR_FGD);
   // Keep the largest connected part: the person, not stray background specks.
   cv::Mat components, stats, centroids;
@@ -58,6 +65,18 @@ PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iter
   if (best == 0) throw InputError(source + ": GrabCut found no person inside the box");
   mask = components == best;
   return CutoutFromMask(bgr, mask, source);
+}
+
+std::vector<PersonCutout> DefaultPersonCutouts() {
+  const cv::Mat photo = cv::imread(kDefaultPeoplePhoto, cv::IMREAD_COLOR);
+  if (photo.empty())
+    throw InputError(std::string(kDefaultPeoplePhoto) +
+                     ": the default people's photo is missing: install Debian's opencv-doc "
+                     "(apt-get install opencv-doc), or give --person with --person-box or --person-mask");
+  // Two men standing upright: on the right in a red shirt, seen from behind; on the left in a
+  // red shirt and grey shorts, seen from the side.
+  return {CutoutWithGrabCut(photo, kDefaultPersonBoxes[0], 5, 1, kDefaultPeoplePhoto),
+          CutoutWithGrabCut(photo, kDefaultPersonBoxes[1], 5, 1, kDefaultPeoplePhoto)};
 }
 
 PersonCutout MakeSyntheticPersonCutout(std::uint32_t seed) {

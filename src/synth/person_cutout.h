@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -21,11 +22,21 @@ PersonCutout CutoutFromMask(const cv::Mat& bgr, const cv::Mat& mask, const std::
 // Reads an image and a mask PNG (non-zero = person); throws InputError naming the file.
 PersonCutout LoadPersonCutout(const std::string& image_path, const std::string& mask_path);
 
-// Segments the person inside `box` with GrabCut (`iterations` rounds, deterministic from
-// `seed`). Throws InputError naming `source` when the box is not inside the image or
+// Segments the upright person inside `box` with GrabCut (`iterations` rounds, deterministic from
+// `seed`; the box's middle column is taken as surely the person). Throws InputError naming `source` when the box is not inside the image or
 // nothing is segmented.
 PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
                                const std::string& source);
+
+// The photo the default people are cut from: a Debian package's file (opencv-doc).
+constexpr const char* kDefaultPeoplePhoto = "/usr/share/doc/opencv-doc/opencv4/html/person_multi_det.jpg";
+
+// Boxes (x, y, width, height) of two people standing upright in kDefaultPeoplePhoto.
+inline const cv::Rect kDefaultPersonBoxes[2] = {{343, 170, 40, 178}, {18, 186, 24, 118}};
+
+// The two people of kDefaultPersonBoxes, segmented by GrabCut in fixed boxes. Throws
+// InputError saying how to install the photo (or to give one) when it is missing.
+std::vector<PersonCutout> DefaultPersonCutouts();
 
 // A textured standing-person silhouette (head, torso, arms, legs; clothes patterns),
 // 200 x 600 pixels, deterministic from the seed: the default when no photo is given.

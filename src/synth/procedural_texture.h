@@ -25,6 +25,8 @@ enum class TextureKind {
 struct Texture {
   std::vector<cv::Mat> levels;  // CV_8UC3 (BGR) or CV_8UC4 (BGRA, alpha = coverage)
   double texel_size_m = 0.005;  // metres covered by one level-0 texel
+  cv::Mat relief;               // CV_32F in [0, 1] of level 0's size, or empty: per-texel height
+                                // toward the viewer, in units of the quad's relief_m
 };
 
 // A BGR image of the given kind, width x height texels, the same for the same seed.

@@ -28,6 +28,15 @@ Polygon ClipPolygon(const Polygon& in, const Eigen::Vector3d& n, double d) {
   return out;
 }
 
+// Metres the quad's surface stands out toward the camera at texture coordinates `ab`.
+float ReliefAt(const TexturedQuad& quad, const cv::Vec2f& ab) {
+  const cv::Mat& relief = quad.texture->relief;
+  if (quad.relief_m <= 0 || relief.empty()) return 0.0f;
+  const int tx = std::min(relief.cols - 1, static_cast<int>(ab[0] * relief.cols));
+  const int ty = std::min(relief.rows - 1, static_cast<int>(ab[1] * relief.rows));
+  return static_cast<float>(quad.relief_m) * relief.at<float>(ty, tx);
+}
+
 }  // namespace
 
 Renderer::Renderer(const Camera& camera) : camera_(camera) {
@@ -188,7 +197,7 @@ RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose
       const TexturedQuad& quad = quads[static_cast<size_t>(qi)];
       const Texture& tex = *quad.texture;
       const float z = zrow[x];
-      dout[x] = z;
+      dout[x] = z - ReliefAt(quad, crow[x]);
       iout[x] = static_cast<std::uint16_t>(std::clamp(quad.object_id, 0, 65535));
       // Mip level from the texel footprint (texels per pixel), stretched by the viewing
       // obliquity: squared, (z |r| / (f texel))^2 / cos, cos = |n.r| / |r|.

@@ -24,6 +24,8 @@ struct TexturedQuad {
   std::shared_ptr<const Texture> texture;             // required for rendering
   float shade = 1.0f;                                 // brightness factor in (0, 2]
   int object_id = 0;                                  // 0: static scene; > 0: moving object
+  double relief_m = 0;                                // metres: depth pulled toward the camera by
+                                                      // relief_m * texture->relief (rounded bodies)
 };
 
 // The quad moved by a rigid transform (`to_from_from` applied to its points).

@@ -28,6 +28,10 @@ SyntheticSequenceOptions::SyntheticSequenceOptions() : camera(TumIntrinsics("fr3
 void SyntheticSequenceOptions::Check() const {
   RequireOption(frames >= 1, "synth", "frames", ">= 1", frames);
   RequireOption(fps > 0 && fps <= 60, "synth", "fps", "in (0, 60]", fps);
+  if (IsTumScenario(scenario))
+    throw InputError("synth.scenario " + ScenarioName(scenario) +
+                     " is for dynvo-insert-people (people from photos in real frames); synthetic scenes "
+                     "take none, walking_across, walking_toward, two_crossing or sitting_sway");
   camera.Check("synth.camera");
   if (camera.HasDistortion())
     throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");

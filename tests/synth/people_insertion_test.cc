@@ -67,7 +67,7 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   InsertionOptions options;
   options.preset = Scenario::kWalkingAcross;
   PrepareOutputFolder(out.string(), false);
-  const InsertionSummary summary = InsertPeopleIntoSequence(in.string(), cutout, options, out.string());
+  const InsertionSummary summary = InsertPeopleIntoSequence(in.string(), {cutout}, options, out.string());
   ASSERT_EQ(summary.frames, 50);
   EXPECT_EQ(summary.frames_without_pose, 0);
 
@@ -87,10 +87,14 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   const Trajectory gt = ReadTrajectory((in / "groundtruth.txt").string());
   InsertionOptions used = options;
   used.distance_m = summary.distance_m;
-  const InsertionPlan plan = PlanInsertion(used, cutout, gt, rgb.front().stamp, rgb.back().stamp, camera);
-  cv::Mat solid;  // cut-out pixels whose 5x5 neighbourhood is all person: away from the outline
-  cv::extractChannel(cutout.bgra, solid, 3);
-  cv::erode(solid, solid, cv::Mat::ones(5, 5, CV_8U));
+  const InsertionPlan plan = PlanInsertion(used, {cutout}, gt, rgb.front().stamp, rgb.back().stamp, camera);
+  // Body-part pixels whose 5x5 neighbourhood is all person: away from the outline.
+  auto solid_of = [](const TexturedQuad& q) {
+    cv::Mat solid;
+    cv::extractChannel(q.texture->levels[0], solid, 3);
+    cv::erode(solid, solid, cv::Mat::ones(5, 5, CV_8U));
+    return solid;
+  };
 
   int frames_with_mask = 0, frames_without = 0, visible_samples = 0, visible_masked = 0;
   int occluded_samples = 0, occluded_masked = 0;
@@ -103,13 +107,16 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
     // Pixels the person does not cover are byte-identical; covered pixels are nearer.
     EXPECT_EQ(CountDifferent(in_rgb, out_rgb, mask == 0), 0) << "frame " << i;
     EXPECT_EQ(CountDifferent(in_depth, out_depth, mask == 0), 0) << "frame " << i;
-    EXPECT_EQ(cv::countNonZero(mask & (in_depth > 0) & (out_depth >= in_depth)), 0) << "frame " << i;
+    // Person depths are nearer than the real surface, but for the sensor noise added after
+    // the occlusion test (under 5 cm at the 1-4 m the people walk at).
+    EXPECT_EQ(cv::countNonZero(mask & (in_depth > 0) & (out_depth >= in_depth + 250)), 0) << "frame " << i;
 
     Pose world_from_camera;
     ASSERT_TRUE(InterpolatePose(gt, rgb[i].stamp, 0.1, &world_from_camera));
     const Pose camera_from_world = world_from_camera.inverse();
     std::vector<cv::Point3d> points;
-    for (const TexturedQuad& q : InsertionQuadsAt(plan, rgb[i].stamp))
+    for (const TexturedQuad& q : InsertionQuadsAt(plan, rgb[i].stamp)) {
+      const cv::Mat solid = solid_of(q);
       for (int r = 2; r < solid.rows; r += 6)
         for (int c = 2; c < solid.cols; c += 6) {
           if (solid.at<uchar>(r, c) == 0) continue;
@@ -118,6 +125,7 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
           if (p.z() > 0.1 && std::abs(p.x() / p.z()) < 0.9 && std::abs(p.y() / p.z()) < 0.8)
             points.emplace_back(p.x(), p.y(), p.z());
         }
+    }
     int in_view = 0, visible = 0;
     if (!points.empty()) {
       std::vector<cv::Point2d> pixels;
@@ -143,8 +151,8 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
     if (visible >= 3) {
       EXPECT_TRUE(has_mask) << "frame " << i << ": person in view but mask empty";
     }
-    if (in_view == 0) {
-      EXPECT_FALSE(has_mask) << "frame " << i << ": person out of view but mask set";
+    if (in_view == 0) {  // no sample of a part's interior in view: at most a sliver at the border
+      EXPECT_LT(cv::countNonZero(mask), 300) << "frame " << i << ": person out of view but mask set";
     }
     frames_with_mask += has_mask;
     frames_without += !has_mask;
@@ -164,11 +172,12 @@ TEST(PeopleInsertion, CompositeWritesOnlyNearerPixels) {
   people.depth = cv::Mat(2, 3, CV_32F, cv::Scalar(2.0));
   people.object_id = cv::Mat(2, 3, CV_16U, cv::Scalar(1));
   people.object_id.at<std::uint16_t>(0, 0) = 0;  // no person here
-  cv::Mat bgr(2, 3, CV_8UC3, cv::Scalar(9, 9, 9)), mask;
+  people.object_id.at<std::uint16_t>(1, 2) = 2;  // another person
+  cv::Mat bgr(2, 3, CV_8UC3, cv::Scalar(9, 9, 9)), ids;
   cv::Mat depth = (cv::Mat_<std::uint16_t>(2, 3) << 5000, 5000, 15000, 0, 9999, 10001);
-  EXPECT_EQ(CompositePeople(people, 5000.0, &bgr, &depth, &mask), 3);
-  const cv::Mat expected_mask = (cv::Mat_<uchar>(2, 3) << 0, 0, 255, 255, 0, 255);
-  EXPECT_EQ(cv::countNonZero(mask != expected_mask), 0);
+  EXPECT_EQ(CompositePeople(people, 5000.0, &bgr, &depth, &ids), 3);
+  const cv::Mat expected_ids = (cv::Mat_<std::uint16_t>(2, 3) << 0, 0, 1, 1, 0, 2);
+  EXPECT_EQ(cv::countNonZero(ids != expected_ids), 0);
   EXPECT_EQ(depth.at<std::uint16_t>(1, 0), 10000);  // no reading: the person is written
   EXPECT_EQ(depth.at<std::uint16_t>(1, 1), 9999);   // real surface nearer: untouched
   EXPECT_EQ(bgr.at<cv::Vec3b>(0, 1), cv::Vec3b(9, 9, 9));
