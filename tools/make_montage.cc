@@ -3,6 +3,8 @@
 // false colour.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -41,6 +43,28 @@ cv::Mat Label(cv::Mat tile, const std::string& text) {
   cv::putText(tile, text, {8, 22}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
   cv::putText(tile, text, {8, 22}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   return tile;
+}
+
+// The median of stats.csv's coverage column (written by the generators), or -1 without the file.
+double MedianCoverage(const std::filesystem::path& stats_path) {
+  std::ifstream in(stats_path);
+  if (!in) return -1;
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("timestamp,coverage,", 0) != 0)
+    throw dynvo::InputError(stats_path.string() + ":1: expected the header timestamp,coverage,...");
+  std::vector<double> coverage;
+  for (int number = 2; std::getline(in, line); ++number) {
+    const size_t a = line.find(','), b = line.find(',', a + 1);
+    try {
+      coverage.push_back(std::stod(line.substr(a + 1, b - a - 1)));
+    } catch (const std::exception&) {
+      throw dynvo::InputError(stats_path.string() + ":" + std::to_string(number) + ": coverage is not a number");
+    }
+  }
+  if (coverage.empty()) return -1;
+  std::nth_element(coverage.begin(), coverage.begin() + static_cast<long>(coverage.size() / 2), coverage.end());
+  return coverage[coverage.size() / 2];
 }
 
 }  // namespace
@@ -100,5 +124,9 @@ int main(int argc, char** argv) {
     cv::vconcat(rows, montage);
     if (!cv::imwrite(out, montage)) throw dynvo::InputError(out + ": cannot write PNG");
     std::cout << prog << ": wrote " << out << " (" << montage.cols << "x" << montage.rows << ")\n";
+    const double coverage = MedianCoverage(std::filesystem::path(dataset) / "stats.csv");
+    if (coverage >= 0)
+      std::cout << prog << ": people cover " << std::fixed << std::setprecision(1) << 100 * coverage
+                << "% of the image (median over the frames of stats.csv)\n";
   });
 }

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <future>
+#include <iomanip>
 #include <memory>
 #include <random>
+#include <set>
+#include <sstream>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -114,6 +118,20 @@ Trajectory SyntheticWorld::Groundtruth() const {
   return gt;
 }
 
+namespace {
+
+// The number of distinct people (object ids) seen where `mask` is set.
+int CountPeopleInView(const cv::Mat& object_id, const cv::Mat& mask) {
+  std::set<std::uint16_t> seen;
+  for (int y = 0; y < mask.rows; ++y)
+    for (int x = 0; x < mask.cols; ++x)
+      if (mask.at<uchar>(y, x) != 0 && object_id.at<std::uint16_t>(y, x) != 0)
+        seen.insert(object_id.at<std::uint16_t>(y, x));
+  return static_cast<int>(seen.size());
+}
+
+}  // namespace
+
 SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder) {
   const SyntheticWorld world(options);
   TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) +
@@ -121,6 +139,8 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
                                ", seed " + std::to_string(options.seed));
   SyntheticSequenceSummary summary;
   double ratio_sum = 0;
+  std::ostringstream stats;  // stats.csv: the share of the image the people cover, per frame
+  stats << "timestamp,coverage,people_in_view\n" << std::fixed << std::setprecision(5);
   // PNG encoding of frame i overlaps the rendering of frame i + 1 (one frame in flight, so
   // the writer is never used by two threads at once); the output does not depend on timing.
   std::future<void> pending;
@@ -129,6 +149,8 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
     const int dynamic = cv::countNonZero(frame->mask);
     ratio_sum += double(dynamic) / frame->mask.total();
     if (dynamic > 0) ++summary.frames_with_people;
+    stats << FormatStamp(frame->rgb_stamp) << "," << double(dynamic) / frame->mask.total() << ","
+          << CountPeopleInView(frame->clean.object_id, frame->mask) << "\n";
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async, [&writer, frame] {
       writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16, frame->mask);
@@ -136,6 +158,10 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
   }
   if (pending.valid()) pending.get();
   writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
+  const std::string stats_path = folder + "/stats.csv";
+  std::ofstream stats_file(stats_path);
+  stats_file << stats.str();
+  if (!stats_file.flush()) throw InputError(stats_path + ": cannot write file");
   summary.frames = world.size();
   summary.mean_dynamic_ratio = ratio_sum / world.size();
   return summary;

@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
+#include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -65,6 +67,18 @@ TEST(Tools, SynthRunsThenRefusesToOverwriteAndMontageDrawsIt) {
   const cv::Mat montage = cv::imread(png);
   EXPECT_EQ(montage.cols, 3 * 80);  // RGB, mask overlay, depth
   EXPECT_EQ(montage.rows, 2 * 60);
+  // stats.csv: a line per frame with the share of the image the people cover, its median printed.
+  std::ifstream stats(seq + "/stats.csv");
+  std::string line;
+  std::vector<double> coverage;
+  ASSERT_TRUE(std::getline(stats, line));
+  EXPECT_EQ(line, "timestamp,coverage,people_in_view");
+  while (std::getline(stats, line)) coverage.push_back(std::stod(line.substr(line.find(',') + 1)));
+  ASSERT_EQ(coverage.size(), 3u);
+  std::sort(coverage.begin(), coverage.end());
+  std::ostringstream printed;
+  printed << "people cover " << std::fixed << std::setprecision(1) << 100 * coverage[1] << "% of the image";
+  EXPECT_NE(r.out.find(printed.str()), std::string::npos) << r.out;
   ExpectOneLineError(RunTool(dir, "dynvo-montage", "--dataset " + seq + " --frames 0,7 --force --out " + png),
                      "dynvo-montage", "out of range");
 }
