@@ -37,7 +37,7 @@ void PrepareOutputFolder(const std::string& folder, bool force) {
     if (!fs::is_empty(folder, ec)) {
       if (!force) throw InputError(folder + ": output folder exists and is not empty (use --force to overwrite)");
       for (const char* name : {"rgb", "depth", "masks", "rgb.txt", "depth.txt", "masks.txt", "groundtruth.txt",
-                               "camera.json", "accelerometer.txt"})
+                               "camera.json", "accelerometer.txt", "people.txt", "stats.csv"})
         fs::remove_all(fs::path(folder) / name, ec);
     }
   }
