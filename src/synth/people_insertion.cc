@@ -91,20 +91,30 @@ Pose WorldFromStage(const InsertionOptions& options, const Trajectory& groundtru
 
 }  // namespace
 
-InsertionPlan PlanInsertion(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
-                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
+namespace {
+
+// The dolls of the cut-outs, then of their mirror images (a second person from one photo).
+std::vector<ArticulatedCutout> MakeDolls(const std::vector<PersonCutout>& cutouts, double height_m) {
+  if (cutouts.empty()) throw InputError("no person cut-out to insert");
+  std::vector<ArticulatedCutout> dolls;
+  for (const PersonCutout& cutout : cutouts) dolls.push_back(MakeArticulatedCutout(cutout, height_m));
+  for (const PersonCutout& cutout : cutouts) {
+    PersonCutout mirrored;
+    cv::flip(cutout.bgra, mirrored.bgra, 1);
+    dolls.push_back(MakeArticulatedCutout(mirrored, height_m));
+  }
+  return dolls;
+}
+
+// PlanInsertion with the dolls of `photos` cut-outs already made (MakeDolls).
+InsertionPlan PlanWithDolls(const InsertionOptions& options, const std::vector<ArticulatedCutout>& dolls,
+                            size_t photos, const Trajectory& groundtruth, double first_stamp, double last_stamp,
                             const Camera& camera) {
   options.Check();
-  if (cutouts.empty()) throw InputError("no person cut-out to insert");
   InsertionPlan plan;
   plan.world_from_stage = WorldFromStage(options, groundtruth, first_stamp, last_stamp);
   plan.start_stamp = first_stamp;
-  for (const PersonCutout& cutout : cutouts) plan.dolls.push_back(MakeArticulatedCutout(cutout, options.person_height_m));
-  for (const PersonCutout& cutout : cutouts) {  // mirror images: a second person from one photo
-    PersonCutout mirrored;
-    cv::flip(cutout.bgra, mirrored.bgra, 1);
-    plan.dolls.push_back(MakeArticulatedCutout(mirrored, options.person_height_m));
-  }
+  plan.dolls = dolls;
   StageGeometry geometry;
   geometry.distance_m = options.distance_m > 0 ? options.distance_m : 2.0;
   geometry.speed_mps = options.walk_speed_mps;
@@ -113,11 +123,19 @@ InsertionPlan PlanInsertion(const InsertionOptions& options, const std::vector<P
   geometry.duration_s = last_stamp - first_stamp;
   plan.people = PlanStagePeople(options.preset, geometry);
   // Person k takes cut-out k; with fewer cut-outs than people, the mirror images follow.
-  for (size_t k = 0; k < plan.people.size(); ++k) {
-    const size_t n = cutouts.size();
-    plan.people[k].doll = static_cast<int>(k < n ? k : n + (k - n) % n);
-  }
+  for (size_t k = 0; k < plan.people.size(); ++k)
+    plan.people[k].doll = static_cast<int>(k < photos ? k : photos + (k - photos) % photos);
   return plan;
+}
+
+}  // namespace
+
+InsertionPlan PlanInsertion(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
+                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
+                            const Camera& camera) {
+  options.Check();
+  return PlanWithDolls(options, MakeDolls(cutouts, options.person_height_m), cutouts.size(), groundtruth, first_stamp,
+                       last_stamp, camera);
 }
 
 std::vector<TexturedQuad> InsertionQuadsAt(const InsertionPlan& plan, double stamp) {
@@ -198,12 +216,12 @@ double Median(std::vector<double> values) {
   return values[mid];
 }
 
-// The distance of the people: for the TUM presets, the farthest in 1-3 m at which they cover
+// The distance of the people: for the TUM presets, the farthest in 0.7-3 m at which they cover
 // at least a fifth of the image (median over a few spread frames, the first among them; TUM's
 // people cover 10-50%), else the one at which they cover the most. For the other presets, the
 // distance in 1-4 m that shows the largest part of the bodies: visible pixels times distance
 // squared (a body's image area falls with it), neither occluded nor cut off by the border.
-double ChooseDistance(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
+double ChooseDistance(const InsertionOptions& options, const std::vector<ArticulatedCutout>& dolls, size_t photos,
                       const TumDataset& sequence, const fs::path& in, const ImagePairs& pairs) {
   const Camera camera = sequence.raw_camera();
   const Renderer renderer(camera);
@@ -219,7 +237,7 @@ double ChooseDistance(const InsertionOptions& options, const std::vector<PersonC
   double best_score = -1, best = 2.0;
   for (double d = tum ? 0.7 : 1.0; d <= (tum ? 3.01 : 4.01); d += tum ? 0.1 : 0.2) {
     chosen.distance_m = d;
-    const InsertionPlan plan = PlanInsertion(chosen, cutouts, sequence.groundtruth(), pairs.rgb_stamps.front(),
+    const InsertionPlan plan = PlanWithDolls(chosen, dolls, photos, sequence.groundtruth(), pairs.rgb_stamps.front(),
                                              pairs.rgb_stamps.back(), camera);
     std::vector<double> coverage;
     for (const auto& [i, real_depth] : probes) {
@@ -300,10 +318,11 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
   if (pairs.rgb.empty()) ThrowFileError((in / "rgb.txt").string(), 0, "lists no image");
   const Camera camera = sequence.raw_camera();
   const double factor = sequence.depth_factor();
+  const std::vector<ArticulatedCutout> dolls = MakeDolls(cutouts, options.person_height_m);
   InsertionOptions chosen = options;
-  if (chosen.distance_m == 0) chosen.distance_m = ChooseDistance(options, cutouts, sequence, in, pairs);
-  const InsertionPlan plan =
-      PlanInsertion(chosen, cutouts, sequence.groundtruth(), pairs.rgb_stamps.front(), pairs.rgb_stamps.back(), camera);
+  if (chosen.distance_m == 0) chosen.distance_m = ChooseDistance(options, dolls, cutouts.size(), sequence, in, pairs);
+  const InsertionPlan plan = PlanWithDolls(chosen, dolls, cutouts.size(), sequence.groundtruth(),
+                                           pairs.rgb_stamps.front(), pairs.rgb_stamps.back(), camera);
 
   // Everything as it was first; frames with people are rewritten below.
   for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt", "camera.json"})

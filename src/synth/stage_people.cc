@@ -135,22 +135,31 @@ StagePlacement PlaceStagePerson(const StagePerson& person, double seconds) {
   return out;
 }
 
+namespace {
+
+// One person's quads in the world at `seconds`, object id `object_id`.
+std::vector<TexturedQuad> PersonQuadsAt(const StagePerson& person, const ArticulatedCutout& doll,
+                                        const Pose& world_from_stage, double seconds, int object_id) {
+  const StagePlacement at = PlaceStagePerson(person, seconds);
+  // Limbs turn about the walking direction crossed with up; a seated person faces the
+  // reference camera (forward is stage -y).
+  const Eigen::Vector3d forward = at.direction.squaredNorm() > 0
+                                      ? Eigen::Vector3d(at.direction.x(), at.direction.y(), 0)
+                                      : Eigen::Vector3d(0, -1, 0);
+  const Pose stage_from_doll(Eigen::Translation3d(at.position.x(), at.position.y(), 0));
+  return PoseArticulatedCutout(doll, at.pose, world_from_stage * stage_from_doll,
+                               forward.cross(Eigen::Vector3d::UnitZ()), object_id);
+}
+
+}  // namespace
+
 std::vector<TexturedQuad> StagePeopleQuadsAt(const std::vector<StagePerson>& people,
                                              const std::vector<ArticulatedCutout>& dolls,
                                              const Pose& world_from_stage, double seconds) {
   std::vector<TexturedQuad> quads;
   for (size_t i = 0; i < people.size(); ++i) {
-    const StagePlacement at = PlaceStagePerson(people[i], seconds);
-    // Limbs turn about the walking direction crossed with up; a seated person faces the
-    // reference camera (forward is stage -y).
-    const Eigen::Vector3d forward = at.direction.squaredNorm() > 0
-                                        ? Eigen::Vector3d(at.direction.x(), at.direction.y(), 0)
-                                        : Eigen::Vector3d(0, -1, 0);
-    const Eigen::Vector3d axis = forward.cross(Eigen::Vector3d::UnitZ());
-    const Pose stage_from_doll(Eigen::Translation3d(at.position.x(), at.position.y(), 0));
     const ArticulatedCutout& doll = dolls.at(static_cast<size_t>(people[i].doll) % dolls.size());
-    for (TexturedQuad& q : PoseArticulatedCutout(doll, at.pose, world_from_stage * stage_from_doll, axis,
-                                                 static_cast<int>(i) + 1))
+    for (TexturedQuad& q : PersonQuadsAt(people[i], doll, world_from_stage, seconds, static_cast<int>(i) + 1))
       quads.push_back(std::move(q));
   }
   return quads;
@@ -158,20 +167,16 @@ std::vector<TexturedQuad> StagePeopleQuadsAt(const std::vector<StagePerson>& peo
 
 double StagePersonSpeed(const StagePerson& person, const ArticulatedCutout& doll, double seconds) {
   const double dt = 1.0 / 30.0;
-  const std::vector<ArticulatedCutout> one = {doll};
-  StagePerson single = person;
-  single.doll = 0;
-  const auto now = StagePeopleQuadsAt({single}, one, Pose::Identity(), seconds);
-  const auto before = StagePeopleQuadsAt({single}, one, Pose::Identity(), seconds - dt);
+  const auto now = PersonQuadsAt(person, doll, Pose::Identity(), seconds, 1);
+  const auto before = PersonQuadsAt(person, doll, Pose::Identity(), seconds - dt, 1);
   double fastest = 0;
-  for (size_t k = 0; k < std::min(now.size(), before.size()); ++k)
-    for (int c = 0; c < 4; ++c) {
-      auto corner = [c](const TexturedQuad& q) {
-        return Eigen::Vector3d(q.origin + (c & 1 ? q.edge_u : Eigen::Vector3d::Zero()) +
-                               (c & 2 ? q.edge_v : Eigen::Vector3d::Zero()));
-      };
-      fastest = std::max(fastest, (corner(now[k]) - corner(before[k])).norm() / dt);
-    }
+  for (size_t k = 0; k < std::min(now.size(), before.size()); ++k) {
+    const TexturedQuad &a = now[k], &b = before[k];
+    const Eigen::Vector3d moved[4] = {a.origin - b.origin, a.origin + a.edge_u - b.origin - b.edge_u,
+                                      a.origin + a.edge_v - b.origin - b.edge_v,
+                                      a.origin + a.edge_u + a.edge_v - b.origin - b.edge_u - b.edge_v};
+    for (const Eigen::Vector3d& m : moved) fastest = std::max(fastest, m.norm() / dt);
+  }
   return fastest;
 }
 
