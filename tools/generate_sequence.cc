@@ -21,7 +21,9 @@ int main(int argc, char** argv) {
   double fps = 30, fx = 0, fy = 0, cx = -1, cy = -1;
   unsigned seed = 1;
   bool motion_blur = false, force = false;
-  app.add_option("--scenario", scenario, "none|walking_across|walking_toward|two_crossing|sitting_sway")
+  app.add_option("--scenario", scenario, "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
+                                         "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
+                                         "motion blur, depth a few ms after colour, exposure drift)")
       ->capture_default_str();
   app.add_option("--camera-path", camera_path, "static|xyz|halfsphere|rpy")->capture_default_str();
   app.add_option("--frames", frames, "number of RGB-D frames")->capture_default_str();
@@ -45,7 +47,9 @@ int main(int argc, char** argv) {
     options.frames = frames;
     options.fps = fps;
     options.seed = seed;
-    options.motion_blur = motion_blur;
+    const bool tum = dynvo::IsTumScenario(options.scenario);
+    options.motion_blur = motion_blur || tum;
+    options.kinect_timing = tum;
     if (fps > 0) options.exposure_s = std::min(options.exposure_s, 0.5 / fps);  // shutter open half the frame time at most
     dynvo::Camera camera = dynvo::TumIntrinsics(intrinsics, "--intrinsics");
     camera.distortion = {0, 0, 0, 0, 0};

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -14,6 +13,7 @@
 #include "dataset/image_list.h"
 #include "dataset/stamp_matching.h"
 #include "dataset/tum_dataset.h"
+#include "synth/people_labels.h"
 #include "synth/sensor_noise.h"
 #include "synth/trajectory_sampling.h"
 #include "synth/tum_writer.h"
@@ -209,12 +209,6 @@ cv::Mat ReadImageOfCamera(const std::string& path, int type, const Camera& camer
   return image;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<long>(mid), values.end());
-  return values[mid];
-}
 
 // The distance of the people: for the TUM presets, the farthest in 0.7-3 m at which they cover
 // at least a fifth of the image (median over a few spread frames, the first among them; TUM's
@@ -250,7 +244,7 @@ double ChooseDistance(const InsertionOptions& options, const std::vector<Articul
     }
     double sum = 0;
     for (double c : coverage) sum += c;
-    const double score = tum ? (Median(coverage) >= 0.2 ? 1.0 + d : Median(coverage)) : sum * d * d;
+    const double score = tum ? (MedianOf(coverage) >= 0.2 ? 1.0 + d : MedianOf(coverage)) : sum * d * d;
     if (score > best_score) {
       best_score = score;
       best = d;
@@ -259,49 +253,20 @@ double ChooseDistance(const InsertionOptions& options, const std::vector<Articul
   return best;
 }
 
-// people.txt and stats.csv, a line per person and frame and a line per frame.
-struct LabelFiles {
-  std::string people = "# people inserted by dynvo-insert-people: one line per person and colour image\n"
-                       "# state: moving when a body point moves faster than 0.2 m/s, else still;\n"
-                       "# visible_pixels: pixels of the person in masks/ (0: out of view or hidden)\n"
-                       "# timestamp id state visible_pixels\n";
-  std::string stats = "timestamp,coverage,people_in_view,people_moving\n";
-  std::vector<double> coverage;
-
-  void Add(const InsertionPlan& plan, double stamp, const cv::Mat& person_id) {
-    std::vector<int> pixels(plan.people.size() + 1, 0);
-    for (int y = 0; y < person_id.rows; ++y) {
-      const std::uint16_t* id = person_id.ptr<std::uint16_t>(y);
-      for (int x = 0; x < person_id.cols; ++x)
-        if (id[x] > 0 && id[x] < pixels.size()) ++pixels[id[x]];
-    }
-    int in_view = 0, moving = 0, total = 0;
-    for (size_t k = 0; k < plan.people.size(); ++k) {
-      const StagePerson& person = plan.people[k];
-      const bool is_moving = StagePersonSpeed(person, plan.dolls.at(static_cast<size_t>(person.doll)),
-                                              stamp - plan.start_stamp) > kMovingSpeedMps;
-      const int visible = pixels[k + 1];
-      people += FormatStamp(stamp) + " " + std::to_string(k + 1) + (is_moving ? " moving " : " still ") +
-                std::to_string(visible) + "\n";
-      in_view += visible > 0;
-      moving += visible > 0 && is_moving;
-      total += visible;
-    }
-    const double share = double(total) / person_id.total();
-    coverage.push_back(share);
-    std::ostringstream line;
-    line << FormatStamp(stamp) << "," << std::fixed << std::setprecision(5) << share << "," << in_view << ","
-         << moving << "\n";
-    stats += line.str();
-  }
-};
-
 void WriteText(const fs::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
   if (!out.flush()) ThrowFileError(path.string(), 0, "cannot write file");
 }
 
+// Each person's state at `stamp`.
+std::vector<bool> MovingAt(const InsertionPlan& plan, double stamp) {
+  std::vector<bool> moving;
+  for (const StagePerson& person : plan.people)
+    moving.push_back(StagePersonSpeed(person, plan.dolls.at(static_cast<size_t>(person.doll)),
+                                      stamp - plan.start_stamp) > kMovingSpeedMps);
+  return moving;
+}
 
 }  // namespace
 
@@ -334,7 +299,7 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
 
   const Renderer renderer(camera);
   InsertionSummary summary;
-  LabelFiles labels;
+  PeopleLabels labels("dynvo-insert-people");
   std::string masks_list = "# dynamic masks (255 = pixel of an inserted person), one per color image\n"
                            "# people inserted by dynvo-insert-people into " + sequence.name() +
                            "\n# timestamp filename\n";
@@ -361,18 +326,18 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
         if (summary.first_frame_with_people < 0) summary.first_frame_with_people = static_cast<int>(i);
       }
     }
-    labels.Add(plan, stamp, person_id);
-    WritePng((out / mask_name).string(), person_id > 0);
+    const cv::Mat mask = person_id > 0;
+    labels.AddFrame(stamp, person_id, mask, MovingAt(plan, stamp));
+    WritePng((out / mask_name).string(), mask);
   }
   WriteText(out / "masks.txt", masks_list);
-  WriteText(out / "people.txt", labels.people);
-  WriteText(out / "stats.csv", labels.stats);
+  labels.Write(out.string());
   summary.frames = static_cast<int>(pairs.rgb.size());
   summary.distance_m = chosen.distance_m;
   double sum = 0;
-  for (double c : labels.coverage) sum += c;
-  summary.mean_dynamic_ratio = sum / labels.coverage.size();
-  summary.median_coverage = Median(labels.coverage);
+  for (double c : labels.coverage()) sum += c;
+  summary.mean_dynamic_ratio = sum / labels.coverage().size();
+  summary.median_coverage = MedianOf(labels.coverage());
   return summary;
 }
 

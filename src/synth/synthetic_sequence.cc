@@ -2,19 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <future>
-#include <iomanip>
 #include <memory>
 #include <random>
-#include <set>
-#include <sstream>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 #include "dataset/tum_camera.h"
+#include "synth/people_labels.h"
 #include "synth/tum_writer.h"
 
 namespace dynvo {
@@ -32,10 +29,6 @@ SyntheticSequenceOptions::SyntheticSequenceOptions() : camera(TumIntrinsics("fr3
 void SyntheticSequenceOptions::Check() const {
   RequireOption(frames >= 1, "synth", "frames", ">= 1", frames);
   RequireOption(fps > 0 && fps <= 60, "synth", "fps", "in (0, 60]", fps);
-  if (IsTumScenario(scenario))
-    throw InputError("synth.scenario " + ScenarioName(scenario) +
-                     " is for dynvo-insert-people (people from photos in real frames); synthetic scenes "
-                     "take none, walking_across, walking_toward, two_crossing or sitting_sway");
   camera.Check("synth.camera");
   if (camera.HasDistortion())
     throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");
@@ -54,6 +47,19 @@ SyntheticWorld::SyntheticWorld(const SyntheticSequenceOptions& options)
       static_quads_(MakeRoomScene(options.room, options.seed)),
       people_(MakeScenarioPeople(options.scenario, options.seed * 1009u + 17u)),
       renderer_(options.camera) {
+  if (IsTumScenario(options.scenario)) {
+    // The room's free lanes (scene.h) hold the people: the stage is the room seen from the
+    // start camera, the people 2 m ahead, the photos taken in turn from the seed on.
+    const std::vector<PersonCutout> photos = DefaultPersonCutouts();
+    for (size_t k = 0; k < photos.size(); ++k)
+      dolls_.push_back(MakeArticulatedCutout(photos[(k + options.seed) % photos.size()], 1.7));
+    StageGeometry geometry;
+    geometry.distance_m = 2.0;
+    geometry.tan_half_fov = std::max(options.camera.cx, options.camera.width - options.camera.cx) / options.camera.fx;
+    geometry.person_width_m = dolls_.front().width_m;
+    geometry.duration_s = options.frames / options.fps;
+    stage_people_ = PlanStagePeople(options.scenario, geometry);
+  }
   std::mt19937 rng(options.seed * 7919u + 3u);
   // Depth lags RGB by a few milliseconds, little enough that every depth frame stays
   // nearest to its own RGB frame (TUM association picks the nearest pairs).
@@ -75,7 +81,17 @@ std::vector<TexturedQuad> SyntheticWorld::QuadsAt(double seconds) const {
     const std::vector<TexturedQuad> parts = PersonQuadsAt(person, seconds);
     quads.insert(quads.end(), parts.begin(), parts.end());
   }
+  const std::vector<TexturedQuad> stage = StagePeopleQuadsAt(stage_people_, dolls_, Pose::Identity(), seconds);
+  quads.insert(quads.end(), stage.begin(), stage.end());
   return quads;
+}
+
+std::vector<bool> SyntheticWorld::MovingAt(double seconds) const {
+  std::vector<bool> moving(people_.size(), true);
+  for (const StagePerson& person : stage_people_)
+    moving.push_back(StagePersonSpeed(person, dolls_.at(static_cast<size_t>(person.doll) % dolls_.size()), seconds) >
+                     kMovingSpeedMps);
+  return moving;
 }
 
 SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
@@ -102,8 +118,17 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
     frame.bgr = frame.clean.bgr.clone();
   }
   const std::uint32_t frame_seed = options_.seed * 2654435761u + static_cast<std::uint32_t>(index) * 40503u;
+  cv::Mat depth_m = frame.clean.depth;
+  if (options_.kinect_timing) {
+    const double td = frame.depth_stamp - options_.start_stamp;
+    const RenderResult at_depth = renderer_.Render(QuadsAt(td), WorldFromCamera(td).inverse());
+    depth_m = at_depth.depth;
+    frame.mask |= at_depth.object_id > 0;  // the people's pixels in either image
+    const double gain = 1.0 + 0.1 * std::sin(2 * 3.14159265358979323846 * t / 6.1 + options_.seed);
+    frame.bgr.convertTo(frame.bgr, CV_8UC3, gain);
+  }
   ApplyRgbNoise(options_.noise, frame_seed, &frame.bgr);
-  frame.depth16 = MakeSensorDepth(options_.noise, frame_seed + 1u, frame.clean.depth);
+  frame.depth16 = MakeSensorDepth(options_.noise, frame_seed + 1u, depth_m);
   return frame;
 }
 
@@ -118,20 +143,6 @@ Trajectory SyntheticWorld::Groundtruth() const {
   return gt;
 }
 
-namespace {
-
-// The number of distinct people (object ids) seen where `mask` is set.
-int CountPeopleInView(const cv::Mat& object_id, const cv::Mat& mask) {
-  std::set<std::uint16_t> seen;
-  for (int y = 0; y < mask.rows; ++y)
-    for (int x = 0; x < mask.cols; ++x)
-      if (mask.at<uchar>(y, x) != 0 && object_id.at<std::uint16_t>(y, x) != 0)
-        seen.insert(object_id.at<std::uint16_t>(y, x));
-  return static_cast<int>(seen.size());
-}
-
-}  // namespace
-
 SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder) {
   const SyntheticWorld world(options);
   TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) +
@@ -139,8 +150,7 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
                                ", seed " + std::to_string(options.seed));
   SyntheticSequenceSummary summary;
   double ratio_sum = 0;
-  std::ostringstream stats;  // stats.csv: the share of the image the people cover, per frame
-  stats << "timestamp,coverage,people_in_view\n" << std::fixed << std::setprecision(5);
+  PeopleLabels labels("dynvo-synth");
   // PNG encoding of frame i overlaps the rendering of frame i + 1 (one frame in flight, so
   // the writer is never used by two threads at once); the output does not depend on timing.
   std::future<void> pending;
@@ -149,8 +159,8 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
     const int dynamic = cv::countNonZero(frame->mask);
     ratio_sum += double(dynamic) / frame->mask.total();
     if (dynamic > 0) ++summary.frames_with_people;
-    stats << FormatStamp(frame->rgb_stamp) << "," << double(dynamic) / frame->mask.total() << ","
-          << CountPeopleInView(frame->clean.object_id, frame->mask) << "\n";
+    labels.AddFrame(frame->rgb_stamp, frame->clean.object_id, frame->mask,
+                    world.MovingAt(frame->rgb_stamp - options.start_stamp));
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async, [&writer, frame] {
       writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16, frame->mask);
@@ -158,10 +168,7 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
   }
   if (pending.valid()) pending.get();
   writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
-  const std::string stats_path = folder + "/stats.csv";
-  std::ofstream stats_file(stats_path);
-  stats_file << stats.str();
-  if (!stats_file.flush()) throw InputError(stats_path + ": cannot write file");
+  labels.Write(folder);
   summary.frames = world.size();
   summary.mean_dynamic_ratio = ratio_sum / world.size();
   return summary;

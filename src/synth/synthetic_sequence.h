@@ -1,6 +1,8 @@
 #pragma once
 // Synthetic dynamic RGB-D sequences with ground truth: a textured room, a camera path
-// preset, moving people, sensor noise; camera poses and per-frame dynamic masks are exact.
+// preset, moving people (box people, or for the TUM scenarios the articulated photo people of
+// synth/stage_people.h standing in the room's free lanes), sensor noise; camera poses and
+// per-frame dynamic masks are exact.
 // Deterministic from the seed.
 
 #include <cstdint>
@@ -16,6 +18,7 @@
 #include "synth/renderer.h"
 #include "synth/scene.h"
 #include "synth/sensor_noise.h"
+#include "synth/stage_people.h"
 
 namespace dynvo {
 
@@ -33,6 +36,9 @@ struct SyntheticSequenceOptions {
   bool motion_blur = false;         // average sub-frames over the exposure
   int motion_blur_samples = 5;      // sub-frames per blurred frame (odd, >= 3)
   double exposure_s = 0.02;         // seconds the shutter is open (motion blur)
+  bool kinect_timing = false;       // the depth image rendered at its own stamp, a few ms after
+                                    // the colour image (Kinect v1), and a slow auto-exposure drift
+                                    // of the colour image's brightness (+-10%)
   double start_stamp = 1700000000.0;  // seconds, stamp of the first frame
   RoomOptions room;                 // the static scene
   SensorNoiseOptions noise;         // sensor effects
@@ -67,6 +73,9 @@ class SyntheticWorld {
   // Static scene quads followed by the moving people's quads at `seconds`.
   std::vector<TexturedQuad> QuadsAt(double seconds) const;
   const std::vector<MovingPerson>& people() const { return people_; }
+  // Each person's state at `seconds` (object id k + 1 is person k): the box people of the older
+  // scenarios always move; the TUM scenarios' people as StagePersonSpeed says.
+  std::vector<bool> MovingAt(double seconds) const;
   const Renderer& renderer() const { return renderer_; }
 
   // Frame `index` with sensor effects; the same for the same options.
@@ -78,7 +87,9 @@ class SyntheticWorld {
  private:
   SyntheticSequenceOptions options_;
   std::vector<TexturedQuad> static_quads_;
-  std::vector<MovingPerson> people_;
+  std::vector<MovingPerson> people_;               // box people (older scenarios)
+  std::vector<StagePerson> stage_people_;          // articulated photo people (TUM scenarios)
+  std::vector<ArticulatedCutout> dolls_;
   Renderer renderer_;
   std::vector<double> rgb_stamps_, depth_stamps_;
 };
@@ -89,8 +100,8 @@ struct SyntheticSequenceSummary {
   int frames_with_people = 0;     // frames whose mask is not empty
 };
 
-// Renders every frame and writes the TUM layout (with masks/ and camera.json) into a
-// folder prepared by PrepareOutputFolder.
+// Renders every frame and writes the TUM layout (with masks/, people.txt, stats.csv and
+// camera.json) into a folder prepared by PrepareOutputFolder.
 SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options,
                                                 const std::string& folder);
 

@@ -85,7 +85,7 @@ TEST(SyntheticSequence, SameSeedSameBytesOtherSeedOtherImages) {
     EXPECT_EQ(FileBytes(entry.path()), FileBytes(b / relative)) << relative;
     ++files;
   }
-  EXPECT_EQ(files, 4 * 3 + 6);  // rgb, depth, mask per frame; 4 lists, camera.json, stats.csv
+  EXPECT_EQ(files, 4 * 3 + 7);  // rgb, depth, mask per frame; 4 lists, camera.json, people.txt, stats.csv
   const std::string first_rgb = "rgb/" + FormatStamp(o.start_stamp) + ".png";
   EXPECT_NE(FileBytes(a / first_rgb), FileBytes(c / first_rgb));
 }

@@ -72,7 +72,7 @@ TEST(Tools, SynthRunsThenRefusesToOverwriteAndMontageDrawsIt) {
   std::string line;
   std::vector<double> coverage;
   ASSERT_TRUE(std::getline(stats, line));
-  EXPECT_EQ(line, "timestamp,coverage,people_in_view");
+  EXPECT_EQ(line, "timestamp,coverage,people_in_view,people_moving");
   while (std::getline(stats, line)) coverage.push_back(std::stod(line.substr(line.find(',') + 1)));
   ASSERT_EQ(coverage.size(), 3u);
   std::sort(coverage.begin(), coverage.end());
