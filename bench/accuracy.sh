@@ -32,7 +32,7 @@ bin="$build/bin"
 mkdir -p "$work/runs" "$results"
 sequences="$work/seq"
 DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$shared" bash "$root/tools/make_sequences.sh" \
-  --out "$sequences" --frames "$frames" --seed "$seed" >/dev/null
+  --out "$sequences" --frames "$frames" --seed "$seed" --set box >/dev/null
 
 # run_dir <sequence dir> <mode> [--set k=v...]: where run puts that run
 run_dir() {

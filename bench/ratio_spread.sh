@@ -46,7 +46,7 @@ jobs_max="$(nproc)"
 for s in $scene_seeds; do
   # No shared data here: only the synthetic sequences are generated.
   DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$sequences/no_shared" bash "$root/tools/make_sequences.sh" \
-    --out "$sequences/seed$s/seq" --frames "$frames" --seed "$s" >/dev/null
+    --out "$sequences/seed$s/seq" --frames "$frames" --seed "$s" --set box >/dev/null
   for name in synth_none_xyz synth_none_rpy synth_none_halfsphere $dynamic_names; do
     for budget in $budgets; do
       run "$s" "$name" "$budget" &

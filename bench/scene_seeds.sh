@@ -66,7 +66,7 @@ for s in $scene_seeds; do
   seq="$work/seed$s/seq"
   # No shared data here: only the synthetic sequences are generated.
   DYNVO_BIN_DIR="$bin" DYNVO_SHARED_DIR="$work/no_shared" bash "$root/tools/make_sequences.sh" \
-    --out "$seq" --frames "$frames" --seed "$s" >/dev/null
+    --out "$seq" --frames "$frames" --seed "$s" --set box >/dev/null
   for twin in synth_none_xyz synth_none_rpy synth_none_halfsphere; do
     for mode in paper truth baseline paper_refill truth_refill paper_change_refill; do
       twin_rpe[$twin.$mode]="$(rpe_of "$seq/$twin" "$mode" "$work/seed$s/runs/${twin}_$mode")"

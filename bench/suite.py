@@ -43,9 +43,8 @@ BIN_DIR = os.environ.get("DYNVO_BIN_DIR") or os.path.join(
 SHARED_DIR = os.environ.get("DYNVO_SHARED_DIR") or os.path.join(ROOT, "..", "shared")
 
 # The people of each source: the TUM presets of dynvo-insert-people (articulated photo people in
-# real frames), the scenarios of dynvo-synth (box people in a synthetic room).
+# real frames) and the same scenarios of dynvo-synth (the same people in a synthetic room).
 PRESETS = ("tum_walking", "tum_toward", "tum_away", "tum_sitting")
-SYNTH_SCENARIOS = ("walking_across", "walking_toward", "two_crossing", "sitting_sway")
 # The people of each split's real frames: photos of Debian's opencv-doc and the boxes around them.
 PHOTO = "/usr/share/doc/opencv-doc/opencv4/html/person_multi_det.jpg"
 DEV_PERSON = ("--person", PHOTO, "--person-box", "343,170,40,178")
@@ -70,7 +69,7 @@ class Source:
 # The two splits, every sequence of each.
 #   dev:        parameters and defaults may be tuned on it.
 #   validation: reported only, never used to choose a parameter or default.
-# Each source gives one sequence per preset (INSERT: PRESETS, SYNTH: SYNTH_SCENARIOS). Twins: INSERT: the real folder itself;
+# Each source gives one sequence per preset (PRESETS). Twins: INSERT: the real folder itself;
 # SYNTH: dynvo-synth with the same camera path and seed and `--scenario none`.
 #      split         kind    real folder (INSERT) or camera path (SYNTH)  seed  person
 SOURCES = (
@@ -145,14 +144,13 @@ def short_name(real_folder: str) -> str:
 def source_rows(source: Source, frames: int, seq_dir: str, shared_dir: str) -> list[RowSpec]:
     """The rows of one source: one per preset, each with its twin."""
     seed = str(source.seed)
-    presets = PRESETS if source.kind == INSERT else SYNTH_SCENARIOS
     if source.kind == INSERT:
         real = os.path.join(shared_dir, "data", "tum", source.where)
         twin = Sequence(short_name(real), real)
         available = os.path.isdir(real)
         made = [(f"{twin.name}_{p}_s{seed}",
                  ("dynvo-insert-people", "--dataset", real, "--preset", p, "--seed", seed)
-                 + source.person) for p in presets]
+                 + source.person) for p in PRESETS]
     else:
         def synth(scenario: str) -> tuple[str, ...]:
             return ("dynvo-synth", "--scenario", scenario, "--camera-path", source.where,
@@ -160,7 +158,7 @@ def source_rows(source: Source, frames: int, seq_dir: str, shared_dir: str) -> l
         twin_name = f"synth_none_{source.where}_s{seed}"
         twin = Sequence(twin_name, os.path.join(seq_dir, twin_name), synth("none"))
         available = True
-        made = [(f"synth_{p}_{source.where}_s{seed}", synth(p)) for p in presets]
+        made = [(f"synth_{p}_{source.where}_s{seed}", synth(p)) for p in PRESETS]
     return [RowSpec(source.split, source.kind, Sequence(name, os.path.join(seq_dir, name), command),
                     twin, available) for name, command in made]
 

@@ -2,8 +2,9 @@
 # The run command: installs what is missing, builds (Release), and runs the odometry in
 # paper and baseline modes on a sequence, then evaluates both against its groundtruth.
 #   bash tools/demo.sh [TUM_SEQUENCE_DIR]
-# Without a sequence it first generates the default one (synthetic room, a person walking
-# across the view, camera moving along x/y/z: 300 frames, no download) into out/demo/sequence.
+# Without a sequence it first generates the default one (synthetic room, two people from
+# photos walking across and around the view from the first frame as in TUM's walking
+# sequences, camera moving along x/y/z: 300 frames, no download) into out/demo/sequence.
 # Outputs: out/demo/{paper,baseline}/{trajectory.txt,timing.csv,run.json} and the RPE/ATE lines.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,9 +20,9 @@ bin="$build/bin"
 dataset="${1:-}"
 if [ -z "$dataset" ]; then
   dataset="$out/sequence"
-  if [ ! -f "$dataset/rgb.txt" ]; then
+  if ! grep -qs "scenario tum_walking," "$dataset/rgb.txt"; then
     echo "demo: generating the default sequence in $dataset"
-    "$bin/dynvo-synth" --scenario walking_across --camera-path xyz --frames 300 --seed 1 \
+    "$bin/dynvo-synth" --scenario tum_walking --camera-path xyz --frames 300 --seed 1 \
       --out "$dataset" --force
   fi
 fi

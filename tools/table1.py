@@ -383,10 +383,11 @@ def main():
             folders = sequences_here(out_dir, frames)
             sequences_note = (
                 "Sequences here: made by `tools/make_sequences.sh`: synthetic ones (%d frames,"
-                " seed 1, camera path in the name: xyz hand-held translation, rpy rotation,"
-                " halfsphere orbit; synth_none_* are the same without people) and"
-                " people inserted into the real fr1_rpy_head150 (when the project's data is"
-                " present); and the real TUM folders found (NAME_headN: the first N frames of"
+                " seed 1, articulated photo people as TUM films them, camera path in the name:"
+                " xyz hand-held translation, rpy rotation, halfsphere orbit; synth_none_* are the"
+                " same without people) and people inserted into the real fr1_rpy_head150 with the"
+                " TUM presets (when the project's data is present); and the real TUM folders found"
+                " (NAME_headN: the first N frames of"
                 " a TUM sequence)." % frames)
         by_name = {}
         for folder in folders:

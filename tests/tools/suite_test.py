@@ -217,7 +217,7 @@ class WithFakeBinaries(unittest.TestCase):
             rows = list(csv.DictReader(f))
         ok = [(r["sequence"], r["config"], r["ratio"], r["mask_iou"], r["ms_p90"])
               for r in rows if r["status"] == "ok"]
-        scenarios = suite.SYNTH_SCENARIOS
+        scenarios = suite.PRESETS
         self.assertEqual(ok, [("synth_%s_xyz_s1" % s, c, "2.0", "-" if c == "baseline" else "0.5", "28.0")
                               for s in scenarios for c in ("baseline", "paper")])
         self.assertEqual([r["sequence"] for r in rows if r["status"] == suite.NOT_RUN],
