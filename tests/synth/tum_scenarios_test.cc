@@ -88,5 +88,13 @@ TEST(TumScenarios, ExposureDriftsSlowly) {
   EXPECT_LT(with / without, 1.11);
 }
 
+TEST(TumScenarios, SameSeedSameFrame) {
+  const SyntheticSequenceOptions o = SmallOptions(Scenario::kTumSitting);
+  const SyntheticFrame a = SyntheticWorld(o).RenderFrame(10), b = SyntheticWorld(o).RenderFrame(10);
+  EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(a.depth16, b.depth16, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(a.mask, b.mask, cv::NORM_INF), 0);
+}
+
 }  // namespace
 }  // namespace dynvo
