@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Fills the generated blocks of README.md: the config key table (from `dynvo-cli config-keys
-# --markdown`) and the results tables (from bench/results/*.md, written by the benchmark
-# scripts), after bench/targets.sh has made the targets table from their figures. Runs no
-# benchmark itself.
+# Fills the generated blocks of README.md and docs/*.md: the config key table (from `dynvo-cli
+# config-keys --markdown`) and the results tables (from bench/results/*.md, written by the
+# benchmark scripts), after bench/targets.sh has made the targets table from their figures.
+# Runs no benchmark itself.
 #   bash bench/update_readme.sh     (env: DYNVO_BUILD_DIR)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -13,10 +13,9 @@ keys="$(mktemp)"
 trap 'rm -f "$keys"' EXIT
 "$build/bin/dynvo-cli" config-keys --markdown > "$keys"
 
-python3 - "$root/README.md" "$keys" "$root" <<'PY'
+python3 - "$keys" "$root" "$root/README.md" "$root"/docs/*.md <<'PY'
 import re, sys
-readme_path, keys_path, root = sys.argv[1:4]
-text = open(readme_path).read()
+keys_path, root, pages = sys.argv[1], sys.argv[2], sys.argv[3:]
 def fill(match):
     source = match.group(1)
     if source == "dynvo-cli config-keys --markdown":
@@ -27,7 +26,9 @@ def fill(match):
         except FileNotFoundError:
             body = "(not generated yet: run the script named above)\n"
     return "<!-- BEGIN generated: %s -->\n%s<!-- END generated -->" % (source, body)
-new = re.sub(r"<!-- BEGIN generated: (.*?) -->\n.*?<!-- END generated -->", fill, text, flags=re.S)
-open(readme_path, "w").write(new)
+for page in pages:
+    text = open(page).read()
+    new = re.sub(r"<!-- BEGIN generated: (.*?) -->\n.*?<!-- END generated -->", fill, text, flags=re.S)
+    open(page, "w").write(new)
 PY
-echo "update_readme: README.md blocks refreshed"
+echo "update_readme: generated blocks of README.md and docs/*.md refreshed"

@@ -352,7 +352,7 @@ def parse_args():
     parser.add_argument("--force", action="store_true", help="redo finished runs")
     parser.add_argument("--results", metavar="DIR",
                         help="also write table1.md and table1.csv into DIR"
-                             " (the README's copy: bench/results)")
+                             " (the copy docs/results.md shows: bench/results)")
     args = parser.parse_args()
     given = args.sequences or args.root
     if args.frames is not None and given:
