@@ -25,6 +25,43 @@ namespace {
 
 constexpr int kBins = 64;  // levels of log depth Otsu's threshold chooses from
 
+// The log depths of region `r`'s pixels inside `box` (labels at `box` shifted by
+// `label_offset`), quantised to kBins levels over their range: `level` (CV_8UC1, 0 outside the
+// region) and `in_region` (255 where the region has depth). False when the region has no
+// pixel with depth, or only one depth.
+bool QuantiseRegionDepth(const cv::Mat& depth, const cv::Mat& labels, int r, const cv::Rect& box,
+                         const cv::Point& label_offset, cv::Mat* in_region, cv::Mat* level) {
+  cv::Mat log_depth(box.size(), CV_32FC1, cv::Scalar(0.0f));
+  *in_region = cv::Mat::zeros(box.size(), CV_8UC1);
+  float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
+  for (int y = 0; y < box.height; ++y) {
+    const float* z = depth.ptr<float>(box.y + y) + box.x;
+    const int* label = labels.ptr<int>(label_offset.y + y) + label_offset.x;
+    float* log_row = log_depth.ptr<float>(y);
+    uint8_t* in_row = in_region->ptr<uint8_t>(y);
+    for (int x = 0; x < box.width; ++x) {
+      if (label[x] != r || z[x] <= 0.0f) continue;
+      const float l = std::log(z[x]);
+      log_row[x] = l;
+      in_row[x] = 255;
+      low = std::min(low, l);
+      high = std::max(high, l);
+    }
+  }
+  if (!(high > low)) return false;
+  const float level_width = (high - low) / kBins;
+  *level = cv::Mat::zeros(box.size(), CV_8UC1);
+  for (int y = 0; y < box.height; ++y) {
+    const float* log_row = log_depth.ptr<float>(y);
+    const uint8_t* in_row = in_region->ptr<uint8_t>(y);
+    uint8_t* level_row = level->ptr<uint8_t>(y);
+    for (int x = 0; x < box.width; ++x)
+      if (in_row[x])
+        level_row[x] = static_cast<uint8_t>(std::min(kBins - 1, static_cast<int>((log_row[x] - low) / level_width)));
+  }
+  return true;
+}
+
 }  // namespace
 
 cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const cv::Mat& explained,
@@ -46,35 +83,8 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
     if (stats.at<int>(r, cv::CC_STAT_AREA) < options.min_region_px) continue;
     const cv::Rect box(mask_box.x + stats.at<int>(r, cv::CC_STAT_LEFT), mask_box.y + stats.at<int>(r, cv::CC_STAT_TOP),
                        stats.at<int>(r, cv::CC_STAT_WIDTH), stats.at<int>(r, cv::CC_STAT_HEIGHT));
-    // The region's log depths, quantised to kBins levels over their range; Otsu splits them.
-    cv::Mat log_depth(box.size(), CV_32FC1, cv::Scalar(0.0f));
-    cv::Mat in_region = cv::Mat::zeros(box.size(), CV_8UC1);  // region pixels with depth
-    float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
-    for (int y = 0; y < box.height; ++y) {
-      const float* z = depth.ptr<float>(box.y + y) + box.x;
-      const int* label = labels.ptr<int>(box.y - mask_box.y + y) + (box.x - mask_box.x);
-      float* log_row = log_depth.ptr<float>(y);
-      uint8_t* in_row = in_region.ptr<uint8_t>(y);
-      for (int x = 0; x < box.width; ++x) {
-        if (label[x] != r || z[x] <= 0.0f) continue;
-        const float l = std::log(z[x]);
-        log_row[x] = l;
-        in_row[x] = 255;
-        low = std::min(low, l);
-        high = std::max(high, l);
-      }
-    }
-    if (!(high > low)) continue;  // no pixel with depth, or one depth
-    const float level_width = (high - low) / kBins;
-    cv::Mat level = cv::Mat::zeros(box.size(), CV_8UC1);  // 0 outside the region
-    for (int y = 0; y < box.height; ++y) {
-      const float* log_row = log_depth.ptr<float>(y);
-      const uint8_t* in_row = in_region.ptr<uint8_t>(y);
-      uint8_t* level_row = level.ptr<uint8_t>(y);
-      for (int x = 0; x < box.width; ++x)
-        if (in_row[x])
-          level_row[x] = static_cast<uint8_t>(std::min(kBins - 1, static_cast<int>((log_row[x] - low) / level_width)));
-    }
+    cv::Mat in_region, level;  // region pixels with depth; their log-depth levels
+    if (!QuantiseRegionDepth(depth, labels, r, box, box.tl() - mask_box.tl(), &in_region, &level)) continue;
     const int split = OtsuThresholdZeroOutsideValid(level, in_region);  // levels above it are the farther group
     // The two groups' mean depths, and how much of the farther group the map explains.
     double near_sum = 0.0, far_sum = 0.0;

@@ -40,6 +40,24 @@ std::vector<double> DeltaIndex(const Trajectory& est, const std::vector<double>&
   return index;
 }
 
+// The script's overlap test: fewer than 2 distinct round-trip estimated stamps is an error.
+void RequireOverlap(const std::vector<double>& stamps_gt, const std::vector<double>& stamps_est,
+                    const RpeOptions& options) {
+  std::size_t first_return = stamps_est.size();
+  for (std::size_t k = 0; k < stamps_est.size(); ++k) {
+    const double t_gt = stamps_gt[ClosestIndex(stamps_gt, stamps_est[k] + options.offset, options.closest)];
+    const std::size_t back = ClosestIndex(stamps_est, t_gt - options.offset, options.closest);
+    if (first_return == stamps_est.size()) {
+      first_return = back;
+    } else if (back != first_return) {
+      return;
+    }
+  }
+  throw InputError(
+      "the stamps of the groundtruth and the estimate barely overlap: do the files belong "
+      "to the same sequence?");
+}
+
 }  // namespace
 
 void RpeOptions::Check() const {
@@ -90,24 +108,7 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
     return ClosestIndex(list, t, options.closest);
   };
 
-  // The script's overlap test: fewer than 2 distinct round-trip estimated stamps is an error.
-  {
-    std::size_t first_return = stamps_est.size();
-    bool two_distinct = false;
-    for (std::size_t k = 0; k < stamps_est.size() && !two_distinct; ++k) {
-      const double t_gt = stamps_gt[closest(stamps_gt, stamps_est[k] + options.offset)];
-      const std::size_t back = closest(stamps_est, t_gt - options.offset);
-      if (first_return == stamps_est.size()) {
-        first_return = back;
-      } else if (back != first_return) {
-        two_distinct = true;
-      }
-    }
-    if (!two_distinct)
-      throw InputError(
-          "the stamps of the groundtruth and the estimate barely overlap: do the files belong "
-          "to the same sequence?");
-  }
+  RequireOverlap(stamps_gt, stamps_est, options);
 
   const std::size_t n = est.size();
   std::vector<double> gaps;
