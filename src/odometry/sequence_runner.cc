@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -96,6 +97,108 @@ struct RunTally {
   }
 };
 
+// run.json's description of the run before it starts: dataset, config, outputs.
+nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config, const TumDataset& dataset,
+                         size_t count) {
+  const fs::path out(request.out_dir);
+  nlohmann::json report;
+  report["dynvo_version"] = "0.1.0";
+  report["dataset"] = {{"folder", dataset.folder()},
+                       {"name", dataset.name()},
+                       {"frames_associated", dataset.size()},
+                       {"frames_to_process", count},
+                       {"unmatched_rgb", dataset.unmatched_rgb()},
+                       {"has_groundtruth", dataset.has_groundtruth()},
+                       {"has_masks", dataset.has_masks()},
+                       {"camera", CameraJson(dataset.camera())}};
+  report["config_file"] = request.config_path;
+  report["overrides"] = request.overrides;
+  report["config"] = OdometryConfigToJson(config);
+  report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()},
+                       {"timing", (out / "timing.csv").string()}};
+
+  return report;
+}
+
+// run.json's results: status, counts, times, memory and mask quality.
+void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, bool preload,
+                   bool evaluate_masks, nlohmann::json* out) {
+  nlohmann::json& report = *out;
+  double processing_total = 0;
+  for (double v : tally.processing) processing_total += v;
+  const size_t done = tally.processing.size();
+  report["status"] = failure.empty() ? "completed" : "failed";
+  if (!failure.empty()) report["error"] = failure;
+  report["counts"] = {{"frames", done},
+                      {"tracking_states", tally.states},
+                      {"keyframes", tally.keyframes},
+                      {"masks_computed", tally.mask_computed},
+                      {"masks_failed", tally.mask_failed},
+                      {"features_removed", tally.features_removed},
+                      {"features_readmitted", tally.features_readmitted},
+                      {"new_points_rejected", tally.new_points_rejected},
+                      {"coherent_motion_rejected", tally.coherent_motion_rejected}};
+  nlohmann::json stages;
+  for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
+  report["time"] = {{"processing_ms", Summary(tally.processing)},
+                    {"load_ms", Summary(tally.load)},
+                    {"stages", stages},
+                    {"wall_s", wall_s},
+                    {"end_to_end_fps", wall_s > 0 ? done / wall_s : 0.0},
+                    {"processing_fps", processing_total > 0 ? 1000.0 * done / processing_total : 0.0},
+                    {"preload", preload}};
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  report["memory"] = {{"peak_rss_mb", usage.ru_maxrss / 1024.0}};  // ru_maxrss is in KiB on Linux
+  if (evaluate_masks && done > 0) {
+    double iou_sum = 0;
+    for (double v : tally.mask_iou) iou_sum += v;
+    report["mask_quality"] = {{"frames", tally.mask_iou.size()},
+                              {"precision", tally.mask_total.Precision()},
+                              {"recall", tally.mask_total.Recall()},
+                              {"iou", tally.mask_total.Iou()},
+                              {"mean_frame_iou", iou_sum / tally.mask_iou.size()},
+                              {"pooling", "precision, recall and iou over all pixels of all frames"}};
+  } else {
+    report["mask_quality"] = nullptr;
+  }
+
+}
+
+// Feeds every frame to `process`: with `hand_next`, frame t once frame t+1 is loaded (the
+// triplet's backward detection and the look-ahead use it), and frame t first when frame t+1
+// fails to load. Returns the failure that ended the run, or "" when every frame was processed.
+std::string ProcessFrames(FrameLoader* loader, bool hand_next,
+                          const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
+                          const RunTally& tally) {
+  try {
+    std::optional<LoadedFrame> pending;
+    for (;;) {
+      std::optional<LoadedFrame> loaded;
+      try {
+        loaded = loader->Next();
+      } catch (const InputError&) {
+        if (pending) process(*pending, nullptr);
+        throw;
+      }
+      if (!loaded) break;
+      if (!hand_next) {
+        process(*loaded, nullptr);
+        continue;
+      }
+      if (pending) process(*pending, &loaded->frame);
+      pending = std::move(loaded);
+    }
+    if (pending) process(*pending, nullptr);
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    // An internal failure must not lose what was computed: record it like a load error.
+    return "internal error after frame " + std::to_string(tally.processing.size()) + ": " + e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 nlohmann::json RunOdometry(const RunRequest& request) {
@@ -117,21 +220,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
       throw InputError("--debug-frames: frame " + std::to_string(f) + " is beyond the last frame " +
                        std::to_string(count - 1));
 
-  nlohmann::json report;
-  report["dynvo_version"] = "0.1.0";
-  report["dataset"] = {{"folder", dataset.folder()},
-                       {"name", dataset.name()},
-                       {"frames_associated", dataset.size()},
-                       {"frames_to_process", count},
-                       {"unmatched_rgb", dataset.unmatched_rgb()},
-                       {"has_groundtruth", dataset.has_groundtruth()},
-                       {"has_masks", dataset.has_masks()},
-                       {"camera", CameraJson(dataset.camera())}};
-  report["config_file"] = request.config_path;
-  report["overrides"] = request.overrides;
-  report["config"] = OdometryConfigToJson(config);
-  report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()},
-                       {"timing", (out / "timing.csv").string()}};
+  nlohmann::json report = RunHeader(request, config, dataset, count);
 
   const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
   FrameLoader loader(dataset, count, evaluate_masks, config.run.preload);
@@ -157,78 +246,13 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     progress.Update(tally.processing.size());
   };
 
-  std::string failure;
-  try {
-    // Frame t is processed once frame t+1 is loaded (the triplet's backward detection and the
-    // look-ahead use it); when frame t+1 fails to load, frame t is processed first.
-    const bool hand_next = pipeline.NeedsNextFrame() || pipeline.LooksAhead();
-    std::optional<LoadedFrame> pending;
-    for (;;) {
-      std::optional<LoadedFrame> loaded;
-      try {
-        loaded = loader.Next();
-      } catch (const InputError&) {
-        if (pending) process(*pending, nullptr);
-        throw;
-      }
-      if (!loaded) break;
-      if (!hand_next) {
-        process(*loaded, nullptr);
-        continue;
-      }
-      if (pending) process(*pending, &loaded->frame);
-      pending = std::move(loaded);
-    }
-    if (pending) process(*pending, nullptr);
-  } catch (const InputError& e) {
-    failure = e.what();
-  } catch (const std::exception& e) {
-    // An internal failure must not lose what was computed: record it like a load error.
-    failure = "internal error after frame " + std::to_string(tally.processing.size()) + ": " + e.what();
-  }
+  const std::string failure =
+      ProcessFrames(&loader, pipeline.NeedsNextFrame() || pipeline.LooksAhead(), process, tally);
   progress.Finish(tally.processing.size());
 
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  double processing_total = 0;
-  for (double v : tally.processing) processing_total += v;
-  const size_t done = tally.processing.size();
-  report["status"] = failure.empty() ? "completed" : "failed";
-  if (!failure.empty()) report["error"] = failure;
-  report["counts"] = {{"frames", done},
-                      {"tracking_states", tally.states},
-                      {"keyframes", tally.keyframes},
-                      {"masks_computed", tally.mask_computed},
-                      {"masks_failed", tally.mask_failed},
-                      {"features_removed", tally.features_removed},
-                      {"features_readmitted", tally.features_readmitted},
-                      {"new_points_rejected", tally.new_points_rejected},
-                      {"coherent_motion_rejected", tally.coherent_motion_rejected}};
-  nlohmann::json stages;
-  for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
-  report["time"] = {{"processing_ms", Summary(tally.processing)},
-                    {"load_ms", Summary(tally.load)},
-                    {"stages", stages},
-                    {"wall_s", wall_s},
-                    {"end_to_end_fps", wall_s > 0 ? done / wall_s : 0.0},
-                    {"processing_fps", processing_total > 0 ? 1000.0 * done / processing_total : 0.0},
-                    {"preload", config.run.preload}};
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  report["memory"] = {{"peak_rss_mb", usage.ru_maxrss / 1024.0}};  // ru_maxrss is in KiB on Linux
-  if (evaluate_masks && done > 0) {
-    double iou_sum = 0;
-    for (double v : tally.mask_iou) iou_sum += v;
-    report["mask_quality"] = {{"frames", tally.mask_iou.size()},
-                              {"precision", tally.mask_total.Precision()},
-                              {"recall", tally.mask_total.Recall()},
-                              {"iou", tally.mask_total.Iou()},
-                              {"mean_frame_iou", iou_sum / tally.mask_iou.size()},
-                              {"pooling", "precision, recall and iou over all pixels of all frames"}};
-  } else {
-    report["mask_quality"] = nullptr;
-  }
-
+  AddRunResults(tally, wall_s, failure, config.run.preload, evaluate_masks, &report);
   const std::string report_path = (out / "run.json").string();
   std::ofstream report_file(report_path, std::ios::trunc);
   if (!report_file) ThrowFileError(report_path, 0, "cannot write file");
