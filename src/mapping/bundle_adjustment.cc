@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <unordered_map>
 #include <utility>
@@ -80,6 +81,143 @@ struct Residual {
   size_t point;         // index into the optimised points
 };
 
+// The keyframes a local BA uses: the newest `window_keyframes` and the older ones observing
+// their points (fixed), with how often each window point is observed among them.
+struct BaWindow {
+  std::vector<uint8_t> used, fixed;
+  std::unordered_map<int64_t, int> points;  // point id -> observations among used keyframes
+  size_t num_fixed = 0;
+};
+
+BaWindow SelectWindow(const std::deque<Keyframe>& keyframes, int window_keyframes) {
+  const size_t n = keyframes.size();
+  const size_t window = std::min(static_cast<size_t>(window_keyframes), n);
+  const size_t window_begin = n - window;
+  BaWindow w;
+  for (size_t k = window_begin; k < n; ++k)
+    for (const KeyframeObservation& obs : keyframes[k].observations) w.points[obs.point_id] = 0;
+  w.used.assign(n, 0);
+  w.fixed.assign(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    for (const KeyframeObservation& obs : keyframes[k].observations) {
+      auto it = w.points.find(obs.point_id);
+      if (it == w.points.end()) continue;
+      it->second += 1;
+      w.used[k] = 1;
+    }
+    if (k < window_begin && w.used[k]) w.fixed[k] = 1;
+  }
+  w.num_fixed = static_cast<size_t>(std::count(w.fixed.begin(), w.fixed.end(), 1));
+  // Too few covisible older keyframes: fix the oldest of the window too.
+  for (size_t k = window_begin; k < n && w.num_fixed < kMinFixedKeyframes; ++k) {
+    if (w.used[k] && !w.fixed[k]) {
+      w.fixed[k] = 1;
+      ++w.num_fixed;
+    }
+  }
+  return w;
+}
+
+// The observations of points seen at least twice, in a deterministic order (keyframe,
+// observation); `point_ids` receives the points in the order of Residual::point.
+std::vector<Residual> CollectResiduals(const std::deque<Keyframe>& keyframes, const BaWindow& w,
+                                       std::vector<int64_t>* point_ids) {
+  std::unordered_map<int64_t, size_t> point_index;
+  std::vector<Residual> residuals;
+  for (size_t k = 0; k < keyframes.size(); ++k) {
+    if (!w.used[k]) continue;
+    const auto& observations = keyframes[k].observations;
+    for (size_t o = 0; o < observations.size(); ++o) {
+      auto it = w.points.find(observations[o].point_id);
+      if (it == w.points.end() || it->second < 2) continue;
+      auto [slot, inserted] = point_index.emplace(observations[o].point_id, point_ids->size());
+      if (inserted) point_ids->push_back(observations[o].point_id);
+      residuals.push_back({k, o, slot->second});
+    }
+  }
+  return residuals;
+}
+
+// The variables of the problem: the used keyframes' poses and the points.
+struct BaState {
+  std::vector<PoseBlock> poses;
+  std::vector<Eigen::Vector3d> points;
+};
+
+// One Ceres solve over the active residuals (Huber loss, fixed keyframes constant). Returns
+// false with report->failure set when Ceres gives no usable solution; `*solved` is false when
+// no residual was active (nothing to solve).
+bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, double bf, const BaWindow& w,
+                const std::vector<Residual>& residuals, const std::vector<uint8_t>& active,
+                const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report,
+                bool* solved) {
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  // One loss object shared by all residuals; the problem deletes it once.
+  ceres::LossFunction* loss = new ceres::HuberLoss(options.huber_delta_px);
+  for (size_t i = 0; i < residuals.size(); ++i) {
+    if (!active[i]) continue;
+    const Residual& r = residuals[i];
+    const KeyframeObservation& obs = keyframes[r.keyframe].observations[r.observation];
+    ceres::CostFunction* cost =
+        bf > 0.0 ? new RgbdReprojectionCost(obs.pixel, obs.depth, bf, camera.fx, camera.fy, camera.cx, camera.cy)
+                 : ReprojectionError::Create(obs.pixel, camera.fx, camera.fy, camera.cx, camera.cy);
+    problem.AddResidualBlock(cost, loss, state->poses[r.keyframe].q, state->poses[r.keyframe].t,
+                             state->points[r.point].data());
+  }
+  *solved = problem.NumResidualBlocks() > 0;
+  if (!*solved) {
+    delete loss;
+    return true;
+  }
+  for (size_t k = 0; k < keyframes.size(); ++k) {
+    if (!w.used[k] || !problem.HasParameterBlock(state->poses[k].q)) continue;
+    problem.SetManifold(state->poses[k].q, new ceres::EigenQuaternionManifold);
+    if (w.fixed[k]) {
+      problem.SetParameterBlockConstant(state->poses[k].q);
+      problem.SetParameterBlockConstant(state->poses[k].t);
+    }
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_SCHUR;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.num_threads = 1;  // deterministic
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+  report->iterations += static_cast<int>(summary.iterations.size());
+  if (!summary.IsSolutionUsable()) report->failure = "ceres: " + summary.message;
+  return summary.IsSolutionUsable();
+}
+
+// Final errors; every observation above the threshold now (not only those left out during the
+// rounds) is removed from the map.
+void MeasureAndPrune(const Camera& camera, double bf, double threshold_sq, const std::vector<Residual>& residuals,
+                     const std::vector<Eigen::Vector3d>& points, LocalMap* map, BundleAdjustmentReport* report) {
+  const auto& keyframes = map->keyframes();
+  double final_sq = 0.0, inlier_sq = 0.0;
+  int num_inliers = 0;
+  std::vector<std::pair<int64_t, int64_t>> outliers;
+  for (const Residual& r : residuals) {
+    const Keyframe& keyframe = keyframes[r.keyframe];
+    const KeyframeObservation& obs = keyframe.observations[r.observation];
+    const SquaredErrors e = Errors(camera, bf, keyframe.camera_from_world, points[r.point], obs);
+    final_sq += e.pixel;
+    if (e.full > threshold_sq) {
+      outliers.emplace_back(keyframe.id, obs.point_id);
+    } else {
+      inlier_sq += e.pixel;
+      ++num_inliers;
+    }
+  }
+  report->final_rms_px = std::sqrt(final_sq / static_cast<double>(residuals.size()));
+  report->final_inlier_rms_px = num_inliers > 0 ? std::sqrt(inlier_sq / num_inliers) : 0.0;
+  report->num_outliers_removed = static_cast<int>(outliers.size());
+  if (!outliers.empty()) map->RemoveObservations(outliers);
+}
+
 }  // namespace
 
 BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& camera,
@@ -97,69 +235,27 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
     return report;
   }
   const double bf = camera.fx * options.virtual_baseline_m;
-
-  // The window: the newest keyframes, and the points they observe.
-  const size_t window = std::min(static_cast<size_t>(options.window_keyframes), n);
-  const size_t window_begin = n - window;
-  std::unordered_map<int64_t, int> window_points;  // point id -> observations among used keyframes
-  for (size_t k = window_begin; k < n; ++k)
-    for (const KeyframeObservation& obs : keyframes[k].observations) window_points[obs.point_id] = 0;
-
-  // Keyframes used: the window plus the older ones observing a window point (fixed).
-  std::vector<uint8_t> used(n, 0), fixed(n, 0);
-  for (size_t k = 0; k < n; ++k) {
-    for (const KeyframeObservation& obs : keyframes[k].observations) {
-      auto it = window_points.find(obs.point_id);
-      if (it == window_points.end()) continue;
-      it->second += 1;
-      used[k] = 1;
-    }
-    if (k < window_begin && used[k]) fixed[k] = 1;
-  }
-  size_t num_fixed = static_cast<size_t>(std::count(fixed.begin(), fixed.end(), 1));
-  // Too few covisible older keyframes: fix the oldest of the window too.
-  for (size_t k = window_begin; k < n && num_fixed < kMinFixedKeyframes; ++k) {
-    if (used[k] && !fixed[k]) {
-      fixed[k] = 1;
-      ++num_fixed;
-    }
-  }
-
-  // Points seen at least twice, in a deterministic order (keyframe, observation).
-  std::unordered_map<int64_t, size_t> point_index;
+  const BaWindow w = SelectWindow(keyframes, options.window_keyframes);
   std::vector<int64_t> point_ids;
-  std::vector<Residual> residuals;
-  for (size_t k = 0; k < n; ++k) {
-    if (!used[k]) continue;
-    const auto& observations = keyframes[k].observations;
-    for (size_t o = 0; o < observations.size(); ++o) {
-      auto it = window_points.find(observations[o].point_id);
-      if (it == window_points.end() || it->second < 2) continue;
-      auto [slot, inserted] = point_index.emplace(observations[o].point_id, point_ids.size());
-      if (inserted) point_ids.push_back(observations[o].point_id);
-      residuals.push_back({k, o, slot->second});
-    }
-  }
+  const std::vector<Residual> residuals = CollectResiduals(keyframes, w, &point_ids);
   if (residuals.empty()) {
     report.failure = "no point is observed by two keyframes";
     return report;
   }
 
-  std::vector<PoseBlock> poses(n);
+  BaState state;
+  state.poses.resize(n);
   for (size_t k = 0; k < n; ++k)
-    if (used[k]) poses[k] = ToBlock(keyframes[k].camera_from_world);
-  std::vector<Eigen::Vector3d> points(point_ids.size());
-  for (size_t i = 0; i < point_ids.size(); ++i)
-    points[i] = map.FindPoint(point_ids[i])->position_in_world;
-
+    if (w.used[k]) state.poses[k] = ToBlock(keyframes[k].camera_from_world);
+  for (int64_t id : point_ids) state.points.push_back(map.FindPoint(id)->position_in_world);
   double initial_sq = 0.0;
   for (const Residual& r : residuals)
-    initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, points[r.point],
+    initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, state.points[r.point],
                          keyframes[r.keyframe].observations[r.observation]).pixel;
   for (size_t k = 0; k < n; ++k)
-    if (used[k] && !fixed[k]) ++report.num_keyframes_optimised;
-  report.num_keyframes_fixed = static_cast<int>(num_fixed);
-  report.num_points = static_cast<int>(points.size());
+    if (w.used[k] && !w.fixed[k]) ++report.num_keyframes_optimised;
+  report.num_keyframes_fixed = static_cast<int>(w.num_fixed);
+  report.num_points = static_cast<int>(state.points.size());
   report.num_observations = static_cast<int>(residuals.size());
   report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(residuals.size()));
 
@@ -168,54 +264,15 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
   const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
   std::vector<uint8_t> active(residuals.size(), 1);
   for (int round = 0; round < options.rounds; ++round) {
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
-    ceres::Problem problem(problem_options);
-    // One loss object shared by all residuals; the problem deletes it once.
-    ceres::LossFunction* loss = new ceres::HuberLoss(options.huber_delta_px);
-    for (size_t i = 0; i < residuals.size(); ++i) {
-      if (!active[i]) continue;
-      const Residual& r = residuals[i];
-      const KeyframeObservation& obs = keyframes[r.keyframe].observations[r.observation];
-      ceres::CostFunction* cost =
-          bf > 0.0
-              ? new RgbdReprojectionCost(obs.pixel, obs.depth, bf, camera.fx, camera.fy,
-                                         camera.cx, camera.cy)
-              : ReprojectionError::Create(obs.pixel, camera.fx, camera.fy, camera.cx, camera.cy);
-      problem.AddResidualBlock(cost, loss, poses[r.keyframe].q, poses[r.keyframe].t,
-                               points[r.point].data());
-    }
-    if (problem.NumResidualBlocks() == 0) {
-      delete loss;
-      break;
-    }
-    for (size_t k = 0; k < n; ++k) {
-      if (!used[k] || !problem.HasParameterBlock(poses[k].q)) continue;
-      problem.SetManifold(poses[k].q, new ceres::EigenQuaternionManifold);
-      if (fixed[k]) {
-        problem.SetParameterBlockConstant(poses[k].q);
-        problem.SetParameterBlockConstant(poses[k].t);
-      }
-    }
-    ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_SCHUR;
-    solver_options.max_num_iterations = options.max_iterations;
-    solver_options.num_threads = 1;  // deterministic
-    solver_options.logging_type = ceres::SILENT;
-    solver_options.minimizer_progress_to_stdout = false;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options, &problem, &summary);
-    report.iterations += static_cast<int>(summary.iterations.size());
-    if (!summary.IsSolutionUsable()) {
-      report.failure = "ceres: " + summary.message;
+    bool solved = false;
+    if (!SolveRound(keyframes, camera, bf, w, residuals, active, options, &state, &report, &solved))
       return report;  // nothing written back yet: the map is unchanged
-    }
+    if (!solved) break;
     bool any_new_outlier = false;
     for (size_t i = 0; i < residuals.size(); ++i) {
-      if (!active[i]) continue;
       const Residual& r = residuals[i];
-      if (Errors(camera, bf, FromBlock(poses[r.keyframe]), points[r.point],
-                 keyframes[r.keyframe].observations[r.observation]).full > threshold_sq) {
+      if (active[i] && Errors(camera, bf, FromBlock(state.poses[r.keyframe]), state.points[r.point],
+                              keyframes[r.keyframe].observations[r.observation]).full > threshold_sq) {
         active[i] = 0;
         any_new_outlier = true;
       }
@@ -224,30 +281,9 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
   }
 
   for (size_t k = 0; k < n; ++k)
-    if (used[k] && !fixed[k]) map.SetKeyframePose(k, FromBlock(poses[k]));
-  for (size_t i = 0; i < point_ids.size(); ++i) map.SetPointPosition(point_ids[i], points[i]);
-
-  // Final errors; every observation above the threshold now (not only those left out during
-  // the rounds) is removed from the map.
-  double final_sq = 0.0, inlier_sq = 0.0;
-  int num_inliers = 0;
-  std::vector<std::pair<int64_t, int64_t>> outliers;
-  for (const Residual& r : residuals) {
-    const Keyframe& keyframe = keyframes[r.keyframe];
-    const KeyframeObservation& obs = keyframe.observations[r.observation];
-    const SquaredErrors e = Errors(camera, bf, keyframe.camera_from_world, points[r.point], obs);
-    final_sq += e.pixel;
-    if (e.full > threshold_sq) {
-      outliers.emplace_back(keyframe.id, obs.point_id);
-    } else {
-      inlier_sq += e.pixel;
-      ++num_inliers;
-    }
-  }
-  report.final_rms_px = std::sqrt(final_sq / static_cast<double>(residuals.size()));
-  report.final_inlier_rms_px = num_inliers > 0 ? std::sqrt(inlier_sq / num_inliers) : 0.0;
-  report.num_outliers_removed = static_cast<int>(outliers.size());
-  if (!outliers.empty()) map.RemoveObservations(outliers);
+    if (w.used[k] && !w.fixed[k]) map.SetKeyframePose(k, FromBlock(state.poses[k]));
+  for (size_t i = 0; i < point_ids.size(); ++i) map.SetPointPosition(point_ids[i], state.points[i]);
+  MeasureAndPrune(camera, bf, threshold_sq, residuals, state.points, &map, &report);
   report.ok = true;
   return report;
 }
