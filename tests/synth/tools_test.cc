@@ -93,6 +93,11 @@ TEST(Tools, BadArgumentsGiveOneLineErrors) {
                      "dynvo-insert-people", "none");
   ExpectOneLineError(RunTool(dir, "dynvo-insert-people", "--dataset d --person p.png --out " + out),
                      "dynvo-insert-people", "--person-mask");
+  ExpectOneLineError(RunTool(dir, "dynvo-insert-people",
+                             "--dataset d --person a.png --person b.png --person-box 1,2,30,40 --out " + out),
+                     "dynvo-insert-people", "2 --person, 0 --person-mask, 1 --person-box");
+  ExpectOneLineError(RunTool(dir, "dynvo-insert-people", "--dataset d --preset tum_running --out " + out),
+                     "dynvo-insert-people", "--preset");
 }
 
 }  // namespace
