@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
   CLI::App app{"odometry_speed: dynvo per-frame cost against OpenCV RgbdOdometry and ICPOdometry"};
   std::string dataset_dir, config_path, trajectories_out, json_out;
   std::vector<std::string> overrides;
-  int runs = 3, max_frames = 0;
+  int runs = 3, max_frames = 0, threads = dynvo::Executor::DefaultThreads();
   double scale = 1.0;
   bool no_peers = false;
   app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
@@ -144,6 +144,8 @@ int main(int argc, char** argv) {
                  "resize the frames by this factor (depth nearest-neighbour) and scale the "
                  "intrinsics: 0.5 gives 320x240 from 640x480, 2 gives 1280x960")
       ->check(CLI::Range(0.1, 4.0));
+  app.add_option("--threads", threads, "threads dynvo uses (default: the machine's cores, as dynvo-cli run)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--no-peers", no_peers, "time dynvo only, not the OpenCV odometries");
   app.add_option("--trajectories-out", trajectories_out, "write each method's trajectory here");
   app.add_option("--json", json_out, "write the figures as JSON to this file");
@@ -178,8 +180,9 @@ int main(int argc, char** argv) {
     std::map<std::string, std::vector<double>> stage_last;
     std::vector<double> features_total, features_removed, dynamic_ratio, inliers;  // of the last run
     int lost_frames = 0;                                                     // of the last run
+    dynvo::Executor executor(threads - 1);  // the calling thread is the other one, as in dynvo-cli run
     for (int r = 0; r < runs; ++r) {
-      dynvo::OdometryPipeline pipeline(camera, config, area);
+      dynvo::OdometryPipeline pipeline(camera, config, area, &executor);
       std::vector<double> times;
       dynvo::Trajectory trajectory;
       stage_last.clear();
@@ -189,7 +192,8 @@ int main(int argc, char** argv) {
       inliers.clear();
       lost_frames = 0;
       for (size_t i = 0; i < frames.size(); ++i) {
-        const dynvo::FrameRecord rec = pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr);
+        const dynvo::FrameRecord rec =
+            pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr).record;
         times.push_back(rec.times.processing_ms);
         trajectory.push_back({rec.stamp, rec.world_from_camera});
         stage_last["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
@@ -228,6 +232,7 @@ int main(int argc, char** argv) {
     report["runs"] = runs;
     report["config"] = config_path.empty() ? "defaults" : config_path;
     report["overrides"] = overrides;
+    report["threads"] = threads;
     report["scale"] = scale;
     report["width"] = camera.width;
     report["height"] = camera.height;

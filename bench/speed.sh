@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Per-frame processing cost of dynvo (paper, baseline and occlusion configs, paper and occlusion
-# also without the look-ahead) against OpenCV's
+# also on one thread, without the look-ahead) against OpenCV's
 # RgbdOdometry and ICPOdometry on the same in-memory frames, in the same process
 # (bench/odometry_speed.cc): median over frames, median of RUNS runs, ratio to RgbdOdometry (per run, interleaved),
 # and the per-stage split. Sequences: fr1_rpy_head150 from ../shared when present, and a
@@ -33,15 +33,12 @@ for seq in "${sequences[@]}"; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
       --json "$work/$(basename "$seq")_$mode.json" >&2
   done
-  # Paper mode and configs/occlusion.json without the look-ahead: each frame's stages in its own
-  # call, as before run.lookahead (the same results).
+  # Paper mode and configs/occlusion.json on one thread: each frame's stages in turn, in its own
+  # call (the same results).
   for mode in paper occlusion; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
-      --set run.lookahead=false --json "$work/$(basename "$seq")_${mode}_in_turn.json" >&2
+      --threads 1 --json "$work/$(basename "$seq")_${mode}_in_turn.json" >&2
   done
-  # The same paper pipeline with local BA beside the next frame instead of inside the keyframe's.
-  "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/paper.json" --runs "$runs" \
-    --set local_ba.background=true --json "$work/$(basename "$seq")_paper_ba_background.json" >&2
 done
 
 python3 "$root/bench/speed_table.py" "$work" "$(nproc)" \

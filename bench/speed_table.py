@@ -14,6 +14,8 @@ def config_label(j):
     label = config_name(j)
     if j.get("overrides"):
         label += " (" + ", ".join(j["overrides"]) + ")"
+    if j.get("threads") == 1:
+        label += " (1 thread)"
     return label
 
 with open(csv_path, "w", newline="") as f:
@@ -44,15 +46,12 @@ for j in runs:
         m["opencv_rgbd_odometry"]["median_ms"], m["opencv_icp_odometry"]["median_ms"],
         m["dynvo"]["ratio_to_rgbd_odometry"]))
 print()
-print("Per-stage split of dynvo (median / mean ms per frame). With run.lookahead (the default) a "
-      "frame's ORB features and dynamic mask are computed during the call before, beside that "
-      "frame's tracking, so their times are their own durations and not part of the frame's time "
-      "above (with the additions of configs/occlusion.json the mask stage also holds the depth "
-      "change, the map occlusion and the trim, computed in the frame's own call). With "
-      "run.lookahead=false the features are extracted on a second thread while the mask is computed, "
-      "so those two overlap. Local BA runs at keyframes only (median 0); with "
-      "local_ba.background=true it runs beside the next frame's mask and features, and is counted "
-      "in that frame:")
+print("Per-stage split of dynvo (median / mean ms per frame). On more than one thread a frame's "
+      "ORB features and dynamic mask are computed during the call before, beside that frame's "
+      "tracking, so their times are their own durations and not part of the frame's time above "
+      "(with the additions of configs/occlusion.json the mask stage also holds the depth change, "
+      "the map occlusion and the trim, computed in the frame's own call). On one thread every "
+      "stage runs in turn. Local BA runs at keyframes only (median 0):")
 print()
 names = ["dynamic_mask", "features", "filter", "match", "pose", "map", "local_ba"]
 print("| sequence | config | " + " | ".join(names) + " |")

@@ -79,6 +79,9 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   run->add_flag("--force", request.force, "overwrite the outputs of an earlier run in --out");
   run->add_flag("--quiet", request.quiet, "no progress lines on stderr");
+  run->add_option("--threads", request.threads,
+                  "threads the run uses (default: the machine's cores; 1 = all in order on one); same results")
+      ->check(CLI::PositiveNumber);
   run->add_option("--debug-frames", debug_frames,
                   "frames whose Fig. 1/3 panels are written to OUT/debug, e.g. 10,50-52");
 

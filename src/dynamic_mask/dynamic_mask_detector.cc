@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -131,7 +130,7 @@ const TrackingPyramid& PyramidOf(const cv::Mat& image, const TrackingPyramid& gi
 }  // namespace
 
 DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt, const HomographyOptions& homography,
-                                    const DynamicMaskOptions& options) {
+                                    const DynamicMaskOptions& options, Executor* executor) {
   klt.Check();
   homography.Check();
   options.Check();
@@ -196,13 +195,17 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
     if (round > 1 && CornerChange(h_forward.current_from_previous, result.current_from_previous, size) <
                          options.rounds_min_change_px)
       break;
-    // The forward direction runs on a second thread while this one does the backward one; they
+    // The forward direction runs on the executor while this thread does the backward one; they
     // share only read-only inputs, so the result is the same as in sequence.
-    const auto policy = options.backward == BackwardMode::kNone ? std::launch::deferred : std::launch::async;
-    std::future<void> forward_done = std::async(policy, [&] {
+    const auto detect_forward = [&] {
       DetectDirection(previous_level, current_level, AtLevel(h_forward.current_from_previous, level), area,
                       level_options, &forward);
-    });
+    };
+    Task<void> forward_done;
+    if (executor != nullptr && options.backward != BackwardMode::kNone)
+      forward_done = executor->Submit(detect_forward);
+    else
+      detect_forward();
 
     // Step 4 backward, in frame t coordinates.
     cv::Mat backward_mask;
@@ -233,7 +236,7 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
       }
     }
 
-    forward_done.get();
+    if (forward_done.valid()) forward_done.Get();
 
     // Union of the two directions, at full size.
     cv::Mat fused;

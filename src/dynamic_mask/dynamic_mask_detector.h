@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "core/executor.h"
 #include "core/image_area.h"
 #include "dynamic_mask/dynamic_mask_options.h"
 #include "ego_motion/homography.h"
@@ -54,9 +55,10 @@ struct DynamicMaskResult {
 // then tracks inside the mask's regions are dropped, H re-estimated from the static ones and the mask recomputed,
 // `rounds` times. Corners are detected once in frame t and tracked into t-1 (and t+1 for kTriplet).
 // Bad images or options throw InputError; too few tracks or a degenerate fit give ok = false with the reason.
-// kTriplet without a next frame detects forward only (backward_failure says so). Deterministic.
+// kTriplet without a next frame detects forward only (backward_failure says so). Deterministic:
+// with `executor`, the forward direction runs on it beside the backward one (same result).
 DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt, const HomographyOptions& homography,
-                                    const DynamicMaskOptions& options);
+                                    const DynamicMaskOptions& options, Executor* executor = nullptr);
 
 // Share of the non-zero pixels of `mask` (CV_8UC1), in [0, 1]; 0 for an empty mask.
 double DynamicRatio(const cv::Mat& mask);

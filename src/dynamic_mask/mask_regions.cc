@@ -23,6 +23,12 @@ std::vector<uint8_t> StaticPointFlags(const cv::Mat& mask, const std::vector<cv:
   return flags;
 }
 
+cv::Mat MaskUnion(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return a | b;
+}
+
 cv::Mat RegionsTouching(const cv::Mat& regions, const cv::Mat& seeds) {
   if (regions.type() != CV_8UC1) throw InputError("RegionsTouching needs a CV_8UC1 regions mask");
   cv::Mat kept = cv::Mat::zeros(regions.size(), CV_8UC1);

@@ -22,4 +22,7 @@ std::vector<uint8_t> StaticPointFlags(const cv::Mat& mask, const std::vector<cv:
 // CV_8UC1 of one size; an empty `seeds` keeps nothing. Throws InputError otherwise.
 cv::Mat RegionsTouching(const cv::Mat& regions, const cv::Mat& seeds);
 
+// The union of two binary masks of one size; an empty one adds nothing (the other is returned).
+cv::Mat MaskUnion(const cv::Mat& a, const cv::Mat& b);
+
 }  // namespace dynvo

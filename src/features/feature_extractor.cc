@@ -53,7 +53,8 @@ bool DepthValid(float d, const FeatureOptions& options) {
 
 }  // namespace
 
-FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(options) {
+FeatureExtractor::FeatureExtractor(const FeatureOptions& options, Executor* levels_executor)
+    : options_(options), levels_executor_(levels_executor) {
   options_.Check();
   const int levels = options_.num_levels;
   scales_.resize(levels);
@@ -219,11 +220,9 @@ void FeatureExtractor::BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, c
 template <typename PerLevel>
 void FeatureExtractor::ForEachLevel(const PerLevel& per_level) const {
   const int levels = options_.num_levels;
-  if (options_.parallel_levels) {
+  if (levels_executor_ != nullptr && levels_executor_->num_workers() > 0) {
     // Levels are independent; the result does not depend on the schedule.
-    cv::parallel_for_(cv::Range(0, levels), [&](const cv::Range& range) {
-      for (int l = range.start; l < range.end; ++l) per_level(l);
-    });
+    levels_executor_->ParallelFor(levels, [&per_level](int l) { per_level(l); });
   } else {
     for (int l = 0; l < levels; ++l) per_level(l);
   }

@@ -7,6 +7,7 @@
 #include <opencv2/features2d.hpp>
 
 #include "core/camera.h"
+#include "core/executor.h"
 #include "features/feature_options.h"
 #include "features/frame_features.h"
 
@@ -26,11 +27,12 @@ struct DetectedCorners {
 // chosen by `distribution` (quadtree: ORB-SLAM's); intensity-centroid angle; descriptors by
 // cv::ORB::compute on the level image. Corners stay 19 pixels from each level's border.
 // Holds reusable buffers (pyramid, descriptor engines); no global state. Not thread-safe:
-// use one extractor per thread.
+// use one extractor per concurrent job (features/extractor_pool.h).
 class FeatureExtractor {
  public:
-  // Throws InputError when `options` fail Check().
-  explicit FeatureExtractor(const FeatureOptions& options);
+  // Throws InputError when `options` fail Check(). With `levels_executor` (which must outlive
+  // the extractor), the pyramid levels are detected and described on it (same result).
+  explicit FeatureExtractor(const FeatureOptions& options, Executor* levels_executor = nullptr);
 
   // ORB features of a grey image spread by `options.distribution`, undistorted with `camera`
   // when it has distortion, and back-projected through `depth` (CV_32FC1 metres, same size;
@@ -62,7 +64,7 @@ class FeatureExtractor {
                      cv::Mat* descriptors) const;
   // The pyramid of `gray` into pyramid_ (after checking the inputs).
   void BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude);
-  // Runs `per_level(l)` for every level (on OpenCV's pool with parallel_levels).
+  // Runs `per_level(l)` for every level (on levels_executor_ when given).
   template <typename PerLevel>
   void ForEachLevel(const PerLevel& per_level) const;
   // The features of the levels' keypoints and descriptors: undistorted, back-projected.
@@ -71,6 +73,7 @@ class FeatureExtractor {
                          const Camera& camera) const;
 
   FeatureOptions options_;
+  Executor* levels_executor_ = nullptr;
   std::vector<double> scales_;            // scale of each level relative to level 0
   std::vector<int> features_per_level_;   // share of num_features per level
   std::vector<int> umax_;                 // circular patch bounds for the orientation

@@ -17,7 +17,6 @@ struct FeatureOptions {
   FeatureDistribution distribution = FeatureDistribution::kQuadtree;  // spreading strategy
   double min_depth_m = 0.1;         // depth below -> no 3D point (metres)
   double max_depth_m = 8.0;         // depth above -> no 3D point, far/unreliable (metres)
-  bool parallel_levels = false;     // pyramid levels on OpenCV's thread pool (same result)
   // Used by the pipeline, not the extractor: when the dynamic mask removes features, detect the
   // frame's features again with the mask grown by refill_margin_px excluded, so that the whole
   // num_features budget lands on the static part (a second extraction on such frames).

@@ -17,11 +17,6 @@ struct BundleAdjustmentOptions {
   double outlier_threshold_px = 4.0;  // observations with a larger final error are removed, pixels (> 0)
   double virtual_baseline_m = 0.08; // depth enters as a stereo disparity with this baseline,
                                     // metres (ORB-SLAM RGB-D: bf / fx); 0 = reprojection only (>= 0)
-  bool background = false;          // run on a second thread while the next frame's mask and
-                                    // features are computed; the tracker waits for it before
-                                    // touching the map, so results do not depend on timing.
-                                    // Off by default: on 2 cores it competes with the mask and
-                                    // feature threads and costs more than it saves
   // Throws InputError naming the key ("local_ba.window_keyframes ...") when out of range.
   void Check() const;
 };

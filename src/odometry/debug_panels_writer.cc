@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -51,16 +52,58 @@ void WriteFeatureList(const std::string& path, const std::vector<DebugFeature>& 
   if (!out) ThrowFileError(path, 0, "cannot write the feature list");
 }
 
+// Frame t with its features: kept green, removed red, readmitted yellow.
+cv::Mat DrawFeatures(const cv::Mat& bgr, const std::vector<DebugFeature>& features) {
+  cv::Mat canvas = bgr.clone();
+  for (const DebugFeature& f : features) {
+    const cv::Scalar color = f.status == DebugFeature::Status::kKept      ? cv::Scalar(0, 200, 0)
+                             : f.status == DebugFeature::Status::kRemoved ? cv::Scalar(0, 0, 255)
+                                                                          : cv::Scalar(0, 220, 255);
+    cv::circle(canvas, f.pixel, 3, color, 1, cv::LINE_AA);
+  }
+  return canvas;
+}
+
 }  // namespace
 
-void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat& current_bgr,
-                      const DebugPanels& panels) {
+std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const TrackingResult& tracking) {
+  const auto inlier = [&](size_t i) {
+    return i < tracking.feature_inliers.size() && tracking.feature_inliers[i] != 0;
+  };
+  std::vector<DebugFeature> list;
+  list.reserve(split.kept.size() + split.removed.size());
+  const auto add = [&](const FrameFeatures& f, size_t i, DebugFeature::Status status, bool used) {
+    list.push_back({f.keypoints[i].pt, f.keypoints[i].octave, f.depths[i], status, used});
+  };
+  for (size_t i = 0; i < split.kept.size(); ++i) add(split.kept, i, DebugFeature::Status::kKept, inlier(i));
+  std::vector<int> readmitted_as(split.removed.size(), -1);  // position in `readmitted`
+  for (size_t k = 0; k < tracking.readmitted.size(); ++k)
+    readmitted_as[static_cast<size_t>(tracking.readmitted[k])] = static_cast<int>(k);
+  for (size_t i = 0; i < split.removed.size(); ++i) {
+    const int k = readmitted_as[i];
+    if (k < 0)
+      add(split.removed, i, DebugFeature::Status::kRemoved, false);
+    else
+      add(split.removed, i, DebugFeature::Status::kReadmitted, inlier(split.kept.size() + static_cast<size_t>(k)));
+  }
+  return list;
+}
+
+DebugPanelsWriter::DebugPanelsWriter(std::string dir, std::set<size_t> frames)
+    : dir_(std::move(dir)), frames_(std::move(frames)) {}
+
+void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed) const {
+  if (frames_.count(frame.index) == 0) return;
+  const MaskPacket& mask = processed.stages.mask;
+  const std::vector<DebugFeature> features = ListDebugFeatures(processed.stages.features.split, processed.stages.tracking);
+  const cv::Mat& current_bgr = frame.bgr;
+  const std::string& dir = dir_;
   char prefix[64];
-  std::snprintf(prefix, sizeof(prefix), "/frame_%06zu_", frame_index);
+  std::snprintf(prefix, sizeof(prefix), "/frame_%06zu_", frame.index);
   const std::vector<std::pair<std::string, cv::Mat>> named = {
-      {"compensated", panels.compensated}, {"difference", panels.difference},
-      {"forward_mask", panels.forward_mask}, {"backward_mask", panels.backward_mask},
-      {"fused_mask", panels.fused_mask}, {"features", panels.features}};
+      {"compensated", mask.compensated},   {"difference", mask.difference},
+      {"forward_mask", mask.forward_mask}, {"backward_mask", mask.backward_mask},
+      {"fused_mask", mask.mask},           {"features", DrawFeatures(current_bgr, features)}};
   std::vector<cv::Mat> tiles;
   for (const auto& [name, image] : named) {
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
@@ -69,12 +112,11 @@ void WriteDebugPanels(const std::string& dir, size_t frame_index, const cv::Mat&
     cv::putText(tile, name, {10, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(255, 255, 255), 2);
     tiles.push_back(tile);
   }
-  WriteFeatureList(dir + prefix + "features.csv", panels.feature_list);
+  WriteFeatureList(dir + prefix + "features.csv", features);
   // The stages the paper does not have, outside the montage.
   const std::vector<std::pair<std::string, cv::Mat>> additions = {
-      {"background", panels.background}, {"depth_change", panels.depth_change},
-      {"map_occlusion", panels.map_occlusion},
-      {"map_occlusion_candidates", panels.map_occlusion_candidates}};
+      {"background", processed.stages.features.described}, {"depth_change", mask.depth_change},
+      {"map_occlusion", mask.map_occlusion}, {"map_occlusion_candidates", mask.map_occlusion_candidates}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

@@ -4,26 +4,13 @@
 
 namespace dynvo {
 
-FrameLoader::FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, bool preload,
+FrameLoader::FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, Executor& executor,
                          size_t queue_size)
     : dataset_(dataset),
       count_(count),
       with_masks_(with_masks),
-      preload_(preload),
-      queue_size_(queue_size < 1 ? 1 : queue_size) {
-  if (preload_) thread_ = std::thread([this] { Run(); });
-}
-
-FrameLoader::~FrameLoader() {
-  if (thread_.joinable()) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    changed_.notify_all();
-    thread_.join();
-  }
-}
+      executor_(executor),
+      queue_size_(queue_size < 1 ? 1 : queue_size) {}
 
 LoadedFrame FrameLoader::LoadOne(size_t index) const {
   const auto start = std::chrono::steady_clock::now();
@@ -35,47 +22,15 @@ LoadedFrame FrameLoader::LoadOne(size_t index) const {
   return loaded;
 }
 
-void FrameLoader::Run() {
-  for (size_t i = 0; i < count_; ++i) {
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait(lock, [this] { return stop_ || queue_.size() < queue_size_; });
-      if (stop_) return;
-    }
-    try {
-      LoadedFrame loaded = LoadOne(i);
-      std::lock_guard<std::mutex> lock(mutex_);
-      queue_.push_back(std::move(loaded));
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      error_ = std::current_exception();
-      producer_done_ = true;
-      changed_.notify_all();
-      return;
-    }
-    changed_.notify_all();
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  producer_done_ = true;
-  changed_.notify_all();
-}
-
 std::optional<LoadedFrame> FrameLoader::Next() {
-  if (!preload_) {
-    if (next_index_ >= count_) return std::nullopt;
-    return LoadOne(next_index_++);
+  while (ahead_.size() < queue_size_ && next_to_start_ < count_) {
+    const size_t index = next_to_start_++;
+    ahead_.push_back(executor_.Submit([this, index] { return LoadOne(index); }));
   }
-  std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return !queue_.empty() || producer_done_; });
-  if (!queue_.empty()) {
-    LoadedFrame loaded = std::move(queue_.front());
-    queue_.pop_front();
-    lock.unlock();
-    changed_.notify_all();
-    return loaded;
-  }
-  if (error_) std::rethrow_exception(error_);
-  return std::nullopt;
+  if (ahead_.empty()) return std::nullopt;
+  Task<LoadedFrame> task = std::move(ahead_.front());
+  ahead_.pop_front();
+  return task.Get();
 }
 
 }  // namespace dynvo

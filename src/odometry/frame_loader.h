@@ -1,14 +1,11 @@
 #pragma once
-// Decodes a sequence's frames in order, optionally ahead of use in a second thread (bounded
-// queue), so that PNG decoding overlaps processing. Load errors reach the consumer in order.
+// Decodes a sequence's frames in order, a few ahead of use on the executor, so that PNG
+// decoding overlaps processing. Load errors reach the consumer in order.
 
-#include <condition_variable>
 #include <deque>
-#include <exception>
-#include <mutex>
 #include <optional>
-#include <thread>
 
+#include "core/executor.h"
 #include "dataset/tum_dataset.h"
 
 namespace dynvo {
@@ -21,13 +18,10 @@ struct LoadedFrame {
 
 class FrameLoader {
  public:
-  // Loads frames [0, count) of `dataset`, which must outlive the loader. `with_masks` also
-  // loads ground-truth masks. With `preload`, a thread keeps up to `queue_size` frames ready.
-  FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, bool preload,
+  // Loads frames [0, count) of `dataset`, which must outlive the loader, as must `executor`.
+  // `with_masks` also loads ground-truth masks. Up to `queue_size` frames are decoded ahead.
+  FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, Executor& executor,
               size_t queue_size = 4);
-  ~FrameLoader();
-  FrameLoader(const FrameLoader&) = delete;
-  FrameLoader& operator=(const FrameLoader&) = delete;
 
   // The next frame in order; nullopt after the last. Rethrows the error (InputError) of a
   // frame that failed to load, at that frame's turn.
@@ -35,22 +29,14 @@ class FrameLoader {
 
  private:
   LoadedFrame LoadOne(size_t index) const;
-  void Run();
 
   const TumDataset& dataset_;
   const size_t count_;
   const bool with_masks_;
-  const bool preload_;
+  Executor& executor_;
   const size_t queue_size_;
-  size_t next_index_ = 0;  // synchronous mode only
-
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<LoadedFrame> queue_;
-  std::exception_ptr error_;
-  bool producer_done_ = false;
-  bool stop_ = false;
-  std::thread thread_;
+  size_t next_to_start_ = 0;
+  std::deque<Task<LoadedFrame>> ahead_;  // frames being decoded, in order
 };
 
 }  // namespace dynvo

@@ -21,7 +21,7 @@ void OdometryConfig::Check() const {
   depth_change.Check();
   if (depth_change.enabled && !dynamic_mask_enabled)
     throw InputError("depth_change.enabled needs dynamic_mask.enabled (the baseline has no mask)");
-  if (depth_change.enabled && dynamic_mask_source != MaskSource::kDifference)
+  if (depth_change.enabled && dynamic_mask_source != MaskSourceKind::kDifference)
     throw InputError("depth_change.enabled needs dynamic_mask.source \"difference\"");
   if (depth_change.seeds_only && !(depth_change.enabled && map_occlusion.enabled && map_occlusion.seeded))
     throw InputError(
@@ -30,7 +30,7 @@ void OdometryConfig::Check() const {
   map_occlusion.Check();
   if (map_occlusion.enabled && !dynamic_mask_enabled)
     throw InputError("map_occlusion.enabled needs dynamic_mask.enabled (the baseline has no mask)");
-  if (map_occlusion.enabled && dynamic_mask_source != MaskSource::kDifference)
+  if (map_occlusion.enabled && dynamic_mask_source != MaskSourceKind::kDifference)
     throw InputError("map_occlusion.enabled needs dynamic_mask.source \"difference\"");
   depth_trim.Check();
   if (depth_trim.enabled && !map_occlusion.enabled)
@@ -108,9 +108,9 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
           "false = baseline: no dynamic handling, everything else identical");
   r->BindChoice(
       "dynamic_mask.source", {"difference", "ground_truth"},
-      [c] { return c->dynamic_mask_source == MaskSource::kGroundTruth ? "ground_truth" : "difference"; },
+      [c] { return c->dynamic_mask_source == MaskSourceKind::kGroundTruth ? "ground_truth" : "difference"; },
       [c](const std::string& s) {
-        c->dynamic_mask_source = s == "ground_truth" ? MaskSource::kGroundTruth : MaskSource::kDifference;
+        c->dynamic_mask_source = s == "ground_truth" ? MaskSourceKind::kGroundTruth : MaskSourceKind::kDifference;
       },
       "difference = the paper's detector; ground_truth = the sequence's masks (masks.txt, as "
       "generated sequences have): a perfect mask, to measure what mask errors cost");
@@ -195,8 +195,6 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
       "features.distribution", {"quadtree", "grid", "none"}, [f] { return ToString(f->distribution); },
       [f](const std::string& s) { f->distribution = ParseFeatureDistribution(s, "features.distribution"); },
       "how features are spread over the image");
-  r->Bind("features.parallel_levels", &f->parallel_levels,
-          "detect pyramid levels on OpenCV's thread pool (same result)");
   r->Bind("features.refill_outside_mask", &f->refill_outside_mask,
           "when the dynamic mask removes features, detect them again outside the mask grown by "
           "refill_margin_px, so the whole budget lands on the static part (costs a second extraction)");
@@ -244,9 +242,6 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("local_ba.rounds", &t->local_ba.rounds, "BA solves with outliers dropped in between");
   r->Bind("local_ba.virtual_baseline_m", &t->local_ba.virtual_baseline_m,
           "stereo baseline that weighs the depth residual of an observation");
-  r->Bind("local_ba.background", &t->local_ba.background,
-          "run the BA on a second thread beside the next frame's mask and features (same result "
-          "whatever the timing; the keyframe's own output pose is the tracked one)");
   r->Bind("tracking.min_matches", &t->min_matches, "fewer map matches: wider search, then lost");
   r->Bind("tracking.wide_search_factor", &t->wide_search_factor,
           "search radius multiplier of the retry after too few matches");
@@ -285,10 +280,6 @@ void RegisterConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->Bind("tracking.rematch_radius_px", &t->rematch_radius_px,
           "match again this close to the first pose estimate and refine once more (0 = off)");
   // run
-  r->Bind("run.preload", &c->run.preload, "decode upcoming frames in a second thread");
-  r->Bind("run.lookahead", &c->run.lookahead,
-          "compute frame t+1's features and dynamic mask on the second core while frame t is finished "
-          "(the same results; not with backward \"triplet\" or ground-truth masks)");
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");
 }
 

@@ -27,15 +27,13 @@ struct CameraConfig {
 };
 
 // Where paper mode's dynamic mask comes from.
-enum class MaskSource {
+enum class MaskSourceKind {
   kDifference,   // the paper's detector: motion-compensated frame differencing
   kGroundTruth,  // the sequence's ground-truth masks (generated sequences have them): what a
                  // perfect detector would give, to tell the mask's errors from the tracker's
 };
 
 struct RunOptions {
-  bool preload = true;  // decode the next frames in a second thread while processing
-  bool lookahead = true;  // frame t+1's features and mask beside frame t's later steps (same results)
   int max_frames = 0;   // process at most this many frames (0 = all)
   void Check() const;
 };
@@ -46,7 +44,7 @@ struct OdometryConfig {
   KltOptions klt;
   HomographyOptions homography;
   bool dynamic_mask_enabled = true;  // false = the baseline: same pipeline, no dynamic handling
-  MaskSource dynamic_mask_source = MaskSource::kDifference;  // with dynamic_mask_enabled
+  MaskSourceKind dynamic_mask_source = MaskSourceKind::kDifference;  // with dynamic_mask_enabled
   DynamicMaskOptions dynamic_mask;
   DepthChangeOptions depth_change;  // with dynamic_mask_enabled and the difference source
   MapOcclusionOptions map_occlusion;  // likewise

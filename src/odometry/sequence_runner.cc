@@ -121,7 +121,7 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
 }
 
 // run.json's results: status, counts, times, memory and mask quality.
-void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, bool preload,
+void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, int threads,
                    bool evaluate_masks, nlohmann::json* out) {
   nlohmann::json& report = *out;
   double processing_total = 0;
@@ -146,7 +146,7 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
                     {"wall_s", wall_s},
                     {"end_to_end_fps", wall_s > 0 ? done / wall_s : 0.0},
                     {"processing_fps", processing_total > 0 ? 1000.0 * done / processing_total : 0.0},
-                    {"preload", preload}};
+                    {"threads", threads}};
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   report["memory"] = {{"peak_rss_mb", usage.ru_maxrss / 1024.0}};  // ru_maxrss is in KiB on Linux
@@ -165,10 +165,10 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
 
 }
 
-// Feeds every frame to `process`: with `hand_next`, frame t once frame t+1 is loaded (the
-// triplet's backward detection and the look-ahead use it), and frame t first when frame t+1
-// fails to load. Returns the failure that ended the run, or "" when every frame was processed.
-std::string ProcessFrames(FrameLoader* loader, bool hand_next,
+// Feeds every frame to `process`, frame t once frame t+1 is loaded (the triplet's backward
+// detection and the look-ahead use it), and frame t first when frame t+1 fails to load.
+// Returns the failure that ended the run, or "" when every frame was processed.
+std::string ProcessFrames(FrameLoader* loader,
                           const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
                           const RunTally& tally) {
   try {
@@ -182,10 +182,6 @@ std::string ProcessFrames(FrameLoader* loader, bool hand_next,
         throw;
       }
       if (!loaded) break;
-      if (!hand_next) {
-        process(*loaded, nullptr);
-        continue;
-      }
       if (pending) process(*pending, &loaded->frame);
       pending = std::move(loaded);
     }
@@ -204,7 +200,10 @@ std::string ProcessFrames(FrameLoader* loader, bool hand_next,
 nlohmann::json RunOdometry(const RunRequest& request) {
   const OdometryConfig config = LoadOdometryConfig(request.config_path, request.overrides);
   const TumDataset dataset(request.dataset, config.ReaderOptions());
-  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area());
+  if (request.threads < 0) throw InputError("--threads must be >= 1, got " + std::to_string(request.threads));
+  const int threads = request.threads > 0 ? request.threads : Executor::DefaultThreads();
+  Executor executor(threads - 1);  // the calling thread is the other one
+  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor);
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())
     throw InputError("dynamic_mask.source \"ground_truth\": " + dataset.folder() +
                      " has no masks.txt; ground-truth masks come with generated sequences "
@@ -223,7 +222,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   nlohmann::json report = RunHeader(request, config, dataset, count);
 
   const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
-  FrameLoader loader(dataset, count, evaluate_masks, config.run.preload);
+  FrameLoader loader(dataset, count, evaluate_masks, executor);
+  const DebugPanelsWriter debug_panels((out / "debug").string(), debug_frames);
   TimingCsvWriter timing((out / "timing.csv").string());
   std::ofstream trajectory((out / "trajectory.txt").string(), std::ios::trunc);
   if (!trajectory) ThrowFileError((out / "trajectory.txt").string(), 0, "cannot write file");
@@ -232,13 +232,11 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   const auto wall_start = std::chrono::steady_clock::now();
 
   auto process = [&](LoadedFrame& current, const RgbdFrame* next) {
-    DebugPanels panels;
-    const bool debug = debug_frames.count(current.frame.index) != 0;
-    FrameRecord record = pipeline.Process(current.frame, next, current.truth_mask,
-                                          debug ? &panels : nullptr);
+    const ProcessedFrame processed = pipeline.Process(current.frame, next, current.truth_mask);
+    FrameRecord record = processed.record;
     record.times.load_ms = current.load_ms;
-    if (evaluate_masks) record.mask_quality = CompareMasks(pipeline.last_mask(), current.truth_mask);
-    if (debug) WriteDebugPanels((out / "debug").string(), record.index, current.frame.bgr, panels);
+    if (evaluate_masks) record.mask_quality = CompareMasks(processed.stages.mask.mask, current.truth_mask);
+    debug_panels.OnFrame(current.frame, processed);
     trajectory << FormatTrajectory({{record.stamp, record.world_from_camera}});
     trajectory.flush();
     timing.Write(record);
@@ -246,13 +244,12 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     progress.Update(tally.processing.size());
   };
 
-  const std::string failure =
-      ProcessFrames(&loader, pipeline.NeedsNextFrame() || pipeline.LooksAhead(), process, tally);
+  const std::string failure = ProcessFrames(&loader, process, tally);
   progress.Finish(tally.processing.size());
 
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  AddRunResults(tally, wall_s, failure, config.run.preload, evaluate_masks, &report);
+  AddRunResults(tally, wall_s, failure, threads, evaluate_masks, &report);
   const std::string report_path = (out / "run.json").string();
   std::ofstream report_file(report_path, std::ios::trunc);
   if (!report_file) ThrowFileError(report_path, 0, "cannot write file");

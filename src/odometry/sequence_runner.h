@@ -16,6 +16,8 @@ struct RunRequest {
   bool force = false;                  // overwrite outputs of an earlier run in out_dir
   bool quiet = false;                  // no progress on stderr
   std::vector<size_t> debug_frames;    // frames whose panels go to out_dir/debug/
+  int threads = 0;                     // threads the run uses (0 = the machine's cores; 1 = all
+                                       // work in order on the calling thread); same results
 };
 
 // Runs the odometry on every frame and writes into out_dir: trajectory.txt (TUM format, one

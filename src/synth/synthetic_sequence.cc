@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <memory>
 #include <random>
 
@@ -10,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "core/executor.h"
 #include "dataset/tum_camera.h"
 #include "synth/people_labels.h"
 #include "synth/tum_writer.h"
@@ -153,7 +153,8 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
   PeopleLabels labels("dynvo-synth");
   // PNG encoding of frame i overlaps the rendering of frame i + 1 (one frame in flight, so
   // the writer is never used by two threads at once); the output does not depend on timing.
-  std::future<void> pending;
+  Executor executor(1);
+  Task<void> pending;
   for (int i = 0; i < world.size(); ++i) {
     auto frame = std::make_shared<SyntheticFrame>(world.RenderFrame(i));
     const int dynamic = cv::countNonZero(frame->mask);
@@ -161,12 +162,12 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
     if (dynamic > 0) ++summary.frames_with_people;
     labels.AddFrame(frame->rgb_stamp, frame->clean.object_id, frame->mask,
                     world.MovingAt(frame->rgb_stamp - options.start_stamp));
-    if (pending.valid()) pending.get();  // rethrows a write error
-    pending = std::async(std::launch::async, [&writer, frame] {
+    if (pending.valid()) pending.Get();  // rethrows a write error
+    pending = executor.Submit([&writer, frame] {
       writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16, frame->mask);
     });
   }
-  if (pending.valid()) pending.get();
+  if (pending.valid()) pending.Get();
   writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
   labels.Write(folder);
   summary.frames = world.size();

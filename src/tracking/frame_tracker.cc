@@ -69,31 +69,12 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
   options_.Check();
 }
 
-const LocalMap& FrameTracker::map() {
-  WaitForBackgroundBundleAdjustment();
-  return map_;
-}
-
-void FrameTracker::WaitForBackgroundBundleAdjustment() {
-  if (!background_ba_.valid()) return;
-  finished_ba_ = background_ba_.get();
-  finished_ba_unreported_ = true;
-  // The BA was started at the last frame, a keyframe: its refined pose is the motion model's last.
-  if (finished_ba_.report.ok) motion_.ReplaceLast(map_.keyframes().back().camera_from_world.inverse());
-}
-
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
                                    const FrameFeatures* masked) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
   TrackingResult result;
-  WaitForBackgroundBundleAdjustment();
-  if (finished_ba_unreported_) {
-    finished_ba_unreported_ = false;
-    result.local_ba_ms = finished_ba_.ms;
-    if (finished_ba_.report.ok) result.local_ba_rms_px = finished_ba_.report.final_inlier_rms_px;
-  }
 
   if (!initialized_) {
     const Clock::time_point start = Clock::now();
@@ -168,16 +149,6 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
   motion_.Update(result.world_from_camera, stamp);
   result.map_keyframes = static_cast<int>(map_.num_keyframes());
   result.map_points = static_cast<int>(map_.num_points());
-  if (start_background_ba_) {
-    start_background_ba_ = false;
-    background_ba_ = std::async(std::launch::async, [this] {
-      const Clock::time_point began = Clock::now();
-      TimedReport timed;
-      timed.report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
-      timed.ms = MillisecondsSince(began);
-      return timed;
-    });
-  }
   return result;
 }
 
@@ -506,18 +477,14 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
 
   start = Clock::now();
   Pose refined = world_from_camera;
-  if (options_.local_ba.enabled && options_.local_ba.background) {
-    // The frame's output keeps the tracked pose; the refined one reaches the motion model
-    // when the next frame waits for the BA.
-    start_background_ba_ = true;  // at the end of Track, once the map is no longer read
-  } else if (options_.local_ba.enabled) {
+  if (options_.local_ba.enabled) {
     const BundleAdjustmentReport report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
     if (report.ok) {
       refined = map_.keyframes().back().camera_from_world.inverse();
       result.local_ba_rms_px = report.final_inlier_rms_px;
     }
   }
-  if (!start_background_ba_) result.local_ba_ms = MillisecondsSince(start);
+  result.local_ba_ms = MillisecondsSince(start);
   frames_since_keyframe_ = 0;
   // The inliers of the keyframe (as ORB-SLAM counts the reference keyframe's points seen by
   // several keyframes): new points, seen once, do not count, or the ratio would fire on every

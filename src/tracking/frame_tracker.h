@@ -7,7 +7,6 @@
 // frame is the first frame's camera.
 
 #include <cstdint>
-#include <future>
 #include <string>
 #include <vector>
 
@@ -83,11 +82,9 @@ struct TrackingResult {
                                   // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;  // false: the new keyframe's depths were left out of BA
                                      // (see max_ba_depth_rotation_deg_s)
-  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only; with
-                                  // local_ba.background, of the one that finished in this frame)
+  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only)
   double match_ms = 0, pose_ms = 0, map_ms = 0;  // per-stage wall times, ms
-  double local_ba_ms = 0;  // local BA wall time; with local_ba.background, of the BA that ran
-                           // during this frame (started at the previous keyframe)
+  double local_ba_ms = 0;  // local BA wall time (keyframes only)
 };
 
 class FrameTracker {
@@ -105,8 +102,8 @@ class FrameTracker {
   TrackingResult Track(const FrameFeatures& features, double stamp,
                        const FrameFeatures* masked = nullptr);
 
-  // The local map, after any background bundle adjustment has finished.
-  const LocalMap& map();
+  // The local map as of the last Track.
+  const LocalMap& map() const { return map_; }
   const TrackerOptions& options() const { return options_; }
 
  private:
@@ -151,10 +148,6 @@ class FrameTracker {
                       const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
                       TrackingResult& result);
 
-  // Waits for the bundle adjustment started at the last keyframe (local_ba.background), if
-  // any, and applies its refined keyframe pose to the motion model; the next Track reports it.
-  void WaitForBackgroundBundleAdjustment();
-
   Camera camera_;
   TrackerOptions options_;
   LocalMap map_;
@@ -171,16 +164,6 @@ class FrameTracker {
   std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
   std::vector<uint8_t> moving_features_;  // 1 per feature of the frame flagged by coherent_motion
   cv::Mat visible_descriptors_;
-  // The local BA started at the last keyframe with local_ba.background (declared last so that
-  // it is destroyed, and so waited for, before the map it works on).
-  struct TimedReport {
-    BundleAdjustmentReport report;
-    double ms = 0.0;
-  };
-  std::future<TimedReport> background_ba_;
-  TimedReport finished_ba_;           // the last one waited for, until Track reports it
-  bool finished_ba_unreported_ = false;
-  bool start_background_ba_ = false;  // a keyframe was inserted; its BA starts as Track returns
 };
 
 }  // namespace dynvo

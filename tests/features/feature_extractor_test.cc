@@ -223,10 +223,9 @@ void ExpectSameFeatures(const FrameFeatures& a, const FrameFeatures& b) {
 
 TEST(FeatureExtractor, FromItsOwnCornersEqualsExtract) {
   const cv::Mat image = test::TexturedImage(11);
+  Executor executor(2);
   for (bool parallel : {false, true}) {
-    FeatureOptions options;
-    options.parallel_levels = parallel;
-    FeatureExtractor extractor(options);
+    FeatureExtractor extractor(FeatureOptions{}, parallel ? &executor : nullptr);
     DetectedCorners corners;
     const FrameFeatures extracted = extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(), &corners);
     ASSERT_EQ(corners.levels.size(), 8u);
@@ -317,8 +316,8 @@ TEST(FeatureExtractor, ParallelLevelsGiveTheSameResult) {
   const cv::Mat image = test::TexturedImage(10);
   FeatureOptions options;
   FeatureExtractor sequential(options);
-  options.parallel_levels = true;
-  FeatureExtractor parallel(options);
+  Executor executor(3);
+  FeatureExtractor parallel(options, &executor);
   const FrameFeatures a = sequential.Extract(image, cv::Mat(), Camera{});
   const FrameFeatures b = parallel.Extract(image, cv::Mat(), Camera{});
   ASSERT_EQ(a.size(), b.size());
@@ -361,9 +360,8 @@ TEST(FeatureExtractor, RealImageTiming) {
   std::sort(files.begin(), files.end());
   files.resize(10);
   FeatureExtractor extractor{FeatureOptions{}};
-  FeatureOptions parallel_options;
-  parallel_options.parallel_levels = true;
-  FeatureExtractor parallel(parallel_options);
+  Executor executor(Executor::DefaultThreads() - 1);
+  FeatureExtractor parallel(FeatureOptions{}, &executor);
   std::vector<double> ms, cpu_ms, orb_ms, orb_cpu_ms, parallel_ms;
   size_t fewest = 100000;
   int fewest_cells = 48, cells_margin = 48;

@@ -51,11 +51,12 @@ class EndToEnd : public ::testing::Test {
 
   // Runs dynvo-cli's job with `config` (and `overrides`) into a fresh folder; returns that folder.
   static std::string Run(const std::string& config, const std::string& name,
-                         const std::vector<std::string>& overrides = {}) {
+                         const std::vector<std::string>& overrides = {}, int threads = 0) {
     RunRequest request;
     request.dataset = sequence_;
     request.config_path = ConfigPath(config);
     request.overrides = overrides;
+    request.threads = threads;
     request.out_dir = (dir_->path() / name).string();
     request.quiet = true;
     RunOdometry(request);
@@ -222,12 +223,16 @@ std::string TimingWithoutTimes(const std::string& out_dir) {
   return kept;
 }
 
-TEST_F(EndToEnd, LookingAheadChangesNoResult) {
-  // Frame t+1's features and mask computed beside frame t's tracking, or in their own turn: the
-  // same trajectory and the same counts, in paper mode, with every mask addition, and the baseline.
-  for (const std::string config : {"paper.json", "occlusion.json", "baseline.json"}) {
-    const std::string ahead = Run(config, "ahead_" + config);
-    const std::string in_turn = Run(config, "in_turn_" + config, {"run.lookahead=false"});
+TEST_F(EndToEnd, ThreadsChangeNoResult) {
+  // On three threads frame t+1's features and mask are computed beside frame t's tracking and
+  // the frames decoded ahead; on one, everything runs in turn: the same trajectory and the same
+  // counts, in paper mode, with every mask addition, the triplet, and the baseline.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"paper.json", {}}, {"occlusion.json", {}}, {"baseline.json", {}},
+      {"paper.json", {"dynamic_mask.backward=\"triplet\""}}};
+  for (const auto& [config, overrides] : cases) {
+    const std::string ahead = Run(config, "ahead_" + config + std::to_string(overrides.size()), overrides, 3);
+    const std::string in_turn = Run(config, "in_turn_" + config + std::to_string(overrides.size()), overrides, 1);
     const std::string trajectory = ReadTextFile(ahead + "/trajectory.txt");
     EXPECT_EQ(std::count(trajectory.begin(), trajectory.end(), '\n'), 120) << config;
     EXPECT_EQ(trajectory, ReadTextFile(in_turn + "/trajectory.txt")) << config;
@@ -237,8 +242,8 @@ TEST_F(EndToEnd, LookingAheadChangesNoResult) {
 
 TEST_F(EndToEnd, AFrameThatFailsToLoadKeepsEveryFrameBeforeIt) {
   // A copy of the sequence whose 61st RGB image is not a PNG: the run ends there with the file
-  // named, and frames 0-59 keep their poses and rows, also when frame 59 waited for frame 60
-  // (look-ahead) and with the triplet, which waits for it too.
+  // named, and frames 0-59 keep their poses and rows, on one thread and on three (frame 59 waited
+  // for frame 60 to look ahead), and with the triplet, which waits for it too.
   const std::filesystem::path copy = dir_->path() / "corrupt_sequence";
   std::filesystem::copy(sequence_, copy, std::filesystem::copy_options::recursive);
   std::istringstream rgb_list(ReadTextFile((copy / "rgb.txt").string()));
@@ -250,12 +255,13 @@ TEST_F(EndToEnd, AFrameThatFailsToLoadKeepsEveryFrameBeforeIt) {
   ASSERT_FALSE(bad_image.empty());
   std::ofstream((copy / bad_image).string(), std::ios::trunc) << "not a png";
   const std::vector<std::vector<std::string>> variants = {
-      {}, {"run.lookahead=false"}, {"dynamic_mask.backward=\"triplet\""}};
-  for (size_t v = 0; v < variants.size(); ++v) {
+      {}, {"dynamic_mask.backward=\"triplet\""}};
+  for (size_t v = 0; v < 2 * variants.size(); ++v) {
     RunRequest request;
     request.dataset = copy.string();
     request.config_path = ConfigPath("paper.json");
-    request.overrides = variants[v];
+    request.overrides = variants[v / 2];
+    request.threads = v % 2 == 0 ? 1 : 3;  // in turn, or decoding and looking ahead
     request.out_dir = (dir_->path() / ("corrupt_" + std::to_string(v))).string();
     request.quiet = true;
     try {

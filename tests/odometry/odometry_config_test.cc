@@ -56,7 +56,7 @@ TEST(OdometryConfig, OcclusionIsPaperWithTheAdditions) {
       ConfigPath("paper.json"),
       {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
        "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
-       "features.refill_from_background=true", "features.parallel_levels=true", "depth_trim.enabled=true",
+       "features.refill_from_background=true", "depth_trim.enabled=true",
        "tracking.coherent_motion.enabled=true", "features.refill_reuse_corners=true",
        "dynamic_mask.difference_level=1"}));
   EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
@@ -88,8 +88,8 @@ TEST(OdometryConfig, OverridesWinOverTheFile) {
   const OdometryConfig c = LoadOdometryConfig(
       ConfigPath("paper.json"), {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
                                  "camera.source=fr1", "dynamic_mask.source=ground_truth"});
-  EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).dynamic_mask_source, MaskSource::kDifference);
-  EXPECT_EQ(c.dynamic_mask_source, MaskSource::kGroundTruth);
+  EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).dynamic_mask_source, MaskSourceKind::kDifference);
+  EXPECT_EQ(c.dynamic_mask_source, MaskSourceKind::kGroundTruth);
   EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 9);
   EXPECT_EQ(c.dynamic_mask.backward, BackwardMode::kTriplet);
   ASSERT_TRUE(c.CameraOverride().has_value());

@@ -6,6 +6,8 @@
 
 #include "odometry/odometry_pipeline.h"
 
+#include <vector>
+
 #include <string>
 
 #include <gtest/gtest.h>
@@ -16,6 +18,7 @@
 #include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/mask_morphology.h"
 #include "features/feature_extractor.h"
+#include "odometry/debug_panels_writer.h"
 
 namespace dynvo {
 namespace {
@@ -36,7 +39,7 @@ RgbdFrame TexturedFrame() {
 
 OdometryConfig TruthMaskConfig() {
   OdometryConfig config;
-  config.dynamic_mask_source = MaskSource::kGroundTruth;
+  config.dynamic_mask_source = MaskSourceKind::kGroundTruth;
   return config;
 }
 
@@ -52,31 +55,32 @@ std::string ProcessError(OdometryPipeline& pipeline, const RgbdFrame& frame, con
 TEST(OdometryPipeline, GroundTruthMaskRemovesTheFeaturesOnIt) {
   OdometryPipeline pipeline(Camera{}, TruthMaskConfig());
   EXPECT_TRUE(pipeline.NeedsTruthMask());
-  EXPECT_FALSE(pipeline.NeedsNextFrame());
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask.colRange(0, 320).setTo(255);  // left half "dynamic"
-  const FrameRecord record = pipeline.Process(TexturedFrame(), nullptr, mask);
+  const ProcessedFrame processed = pipeline.Process(TexturedFrame(), nullptr, mask);
+  const FrameRecord& record = processed.record;
   EXPECT_TRUE(record.mask_ok);
+  EXPECT_EQ(processed.stages.mask.status, MaskStatus::kGiven);
   EXPECT_DOUBLE_EQ(record.dynamic_ratio, 0.5);
   ASSERT_GT(record.features_total, 100);
   // Features spread evenly over the image: about half on each side.
   EXPECT_NEAR(static_cast<double>(record.features_removed) / record.features_total, 0.5, 0.1);
   EXPECT_EQ(record.features_kept + record.features_removed, record.features_total);
-  EXPECT_EQ(cv::countNonZero(pipeline.last_mask() != mask), 0);
+  EXPECT_EQ(cv::countNonZero(processed.stages.mask.mask != mask), 0);
 }
 
 TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask.colRange(0, 320).setTo(255);  // left half "dynamic"
   OdometryPipeline plain(Camera{}, TruthMaskConfig());
-  const FrameRecord without = plain.Process(TexturedFrame(), nullptr, mask);
+  const FrameRecord without = plain.Process(TexturedFrame(), nullptr, mask).record;
 
   OdometryConfig config = TruthMaskConfig();
   config.features.refill_outside_mask = true;
   config.features.refill_margin_px = 10;
   OdometryPipeline pipeline(Camera{}, config);
-  DebugPanels debug;
-  const FrameRecord record = pipeline.Process(TexturedFrame(), nullptr, mask, &debug);
+  const ProcessedFrame processed = pipeline.Process(TexturedFrame(), nullptr, mask);
+  const FrameRecord& record = processed.record;
   // The mask removes the same features as without the refill...
   EXPECT_EQ(record.features_removed, without.features_removed);
   // ...but the kept ones are detected again on the right half: the whole budget (the random
@@ -85,36 +89,21 @@ TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
   EXPECT_GE(record.features_kept, 0.95 * config.features.num_features);
   EXPECT_EQ(record.features_total, record.features_kept + record.features_removed);
   // None of the kept features lies on the mask or within the margin of its edge (column 319).
-  int kept = 0;
-  for (const DebugFeature& f : debug.feature_list) {
-    if (f.status != DebugFeature::Status::kKept) continue;
-    ++kept;
-    EXPECT_GE(cvRound(f.pixel.x), 320 + config.features.refill_margin_px) << f.pixel;
-  }
-  EXPECT_EQ(kept, record.features_kept);
-}
-
-// Share of the kept features of `debug` that `reference` has too (same level, within 0.01 px).
-double ShareFoundIn(const DebugPanels& debug, const FrameFeatures& reference) {
-  int kept = 0, found = 0;
-  for (const DebugFeature& f : debug.feature_list) {
-    if (f.status != DebugFeature::Status::kKept) continue;
-    ++kept;
-    for (const cv::KeyPoint& k : reference.keypoints)
-      if (k.octave == f.octave && cv::norm(k.pt - f.pixel) < 0.01) {
-        ++found;
-        break;
-      }
-  }
-  return kept == 0 ? 0.0 : static_cast<double>(found) / kept;
+  const FrameFeatures& kept = processed.stages.features.split.kept;
+  for (const cv::KeyPoint& k : kept.keypoints) EXPECT_GE(cvRound(k.pt.x), 320 + config.features.refill_margin_px) << k.pt;
+  EXPECT_EQ(static_cast<int>(kept.size()), record.features_kept);
 }
 
 // Share of the features of `features` that `reference` has too (same level, within 0.01 px).
 double ShareFoundIn(const FrameFeatures& features, const FrameFeatures& reference) {
-  DebugPanels as_kept;
-  for (const cv::KeyPoint& k : features.keypoints)
-    as_kept.feature_list.push_back({k.pt, k.octave, 0.0, DebugFeature::Status::kKept, false});
-  return ShareFoundIn(as_kept, reference);
+  int found = 0;
+  for (const cv::KeyPoint& f : features.keypoints)
+    for (const cv::KeyPoint& k : reference.keypoints)
+      if (k.octave == f.octave && cv::norm(k.pt - f.pt) < 0.01) {
+        ++found;
+        break;
+      }
+  return features.size() == 0 ? 0.0 : static_cast<double>(found) / features.size();
 }
 
 TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
@@ -149,24 +138,23 @@ TEST(OdometryPipeline, RefillFromBackgroundSeesTheWallBehindWhatMoves) {
     c.features.refill_from_background = from_background;
     OdometryPipeline pipeline(Camera{}, c);
     pipeline.Process(frames[0], nullptr, cv::Mat::zeros(480, 640, CV_8UC1));
-    DebugPanels debug;
-    pipeline.Process(frames[1], nullptr, mask, &debug);
-    return debug;
+    return pipeline.Process(frames[1], nullptr, mask).stages.features;
   };
-  EXPECT_TRUE(run(false).background.empty());
-  const DebugPanels debug = run(true);
+  EXPECT_TRUE(run(false).described.empty());
+  const FeaturePacket features = run(true);
+  const cv::Mat& described = features.described;
   // The frame the refill described: the wall where the patch is (the camera's motion is
   // estimated by KLT, so the warp is bilinear within a fraction of a pixel of the true shift:
   // grey levels within 1 on average), frame 1 itself elsewhere.
-  ASSERT_EQ(debug.background.size(), clean.size());
+  ASSERT_EQ(described.size(), clean.size());
   cv::Mat error;
-  cv::absdiff(debug.background, clean, error);
+  cv::absdiff(described, clean, error);
   EXPECT_LT(cv::mean(error(box))[0], 1.0);
   cv::Mat grown = mask.clone();
   DilateMask(MorphShape::kRect, 2 * kBackgroundFillMarginPx + 1, 1, &grown);
-  EXPECT_EQ(cv::countNonZero((debug.background != frames[1].gray) & ~grown), 0);
+  EXPECT_EQ(cv::countNonZero((described != frames[1].gray) & ~grown), 0);
   // And the features came from it: where the refill would find them without the patch.
-  EXPECT_GT(ShareFoundIn(debug, reference), 0.99);
+  EXPECT_GT(ShareFoundIn(features.split.kept, reference), 0.99);
 }
 
 TEST(OdometryPipeline, RefillReusingCornersChoosesAmongTheFramesOwnCorners) {
@@ -191,18 +179,15 @@ TEST(OdometryPipeline, RefillReusingCornersChoosesAmongTheFramesOwnCorners) {
   ASSERT_LT(ShareFoundIn(detected_again, reference), 0.99);  // the test tells the two apart
 
   OdometryPipeline pipeline(Camera{}, config);
-  DebugPanels debug;
-  const FrameRecord record = pipeline.Process(frame, nullptr, mask, &debug);
+  const ProcessedFrame processed = pipeline.Process(frame, nullptr, mask);
+  const FrameRecord& record = processed.record;
   // More of the budget off the mask than the first extraction left there.
   OdometryPipeline plain(Camera{}, TruthMaskConfig());
-  EXPECT_GT(record.features_kept, plain.Process(frame, nullptr, mask).features_kept + 100);
+  EXPECT_GT(record.features_kept, plain.Process(frame, nullptr, mask).record.features_kept + 100);
   EXPECT_EQ(record.features_kept, static_cast<int>(reference.size()));
-  EXPECT_EQ(ShareFoundIn(debug, reference), 1.0);
-  for (const DebugFeature& f : debug.feature_list) {
-    if (f.status == DebugFeature::Status::kKept) {
-      EXPECT_GE(cvRound(f.pixel.x), 320 + config.features.refill_margin_px);
-    }
-  }
+  EXPECT_EQ(ShareFoundIn(processed.stages.features.split.kept, reference), 1.0);
+  for (const cv::KeyPoint& k : processed.stages.features.split.kept.keypoints)
+    EXPECT_GE(cvRound(k.pt.x), 320 + config.features.refill_margin_px);
 }
 
 TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
@@ -214,11 +199,12 @@ TEST(OdometryPipeline, DebugFeatureListAccountsForEveryFeature) {
   // The same view again: the kept features match the map they were seeded into.
   frame.index += 1;
   frame.stamp += 0.033;
-  DebugPanels debug;
-  const FrameRecord record = pipeline.Process(frame, nullptr, mask, &debug);
-  ASSERT_EQ(static_cast<int>(debug.feature_list.size()), record.features_total);
+  const ProcessedFrame processed = pipeline.Process(frame, nullptr, mask);
+  const FrameRecord& record = processed.record;
+  const std::vector<DebugFeature> list = ListDebugFeatures(processed.stages.features.split, processed.stages.tracking);
+  ASSERT_EQ(static_cast<int>(list.size()), record.features_total);
   int kept = 0, removed = 0, inliers = 0, removed_inliers = 0;
-  for (const DebugFeature& f : debug.feature_list) {
+  for (const DebugFeature& f : list) {
     const bool on_mask = mask.at<uint8_t>(cvRound(f.pixel.y), cvRound(f.pixel.x)) != 0;
     EXPECT_EQ(f.status != DebugFeature::Status::kKept, on_mask) << f.pixel;
     kept += f.status == DebugFeature::Status::kKept;
@@ -264,30 +250,24 @@ TEST(OdometryPipeline, ALookAheadForAnotherFrameIsDropped) {
     frames[i].gray = wall(cv::Rect(6 * i, 0, 640, 480)).clone();
   }
   OdometryConfig config;  // the detector's reverse pair: it looks ahead
-  OdometryPipeline ahead(Camera{}, config), plain(Camera{}, config);
-  ASSERT_TRUE(ahead.LooksAhead());
+  Executor executor(2);
+  OdometryPipeline ahead(Camera{}, config, {}, &executor), plain(Camera{}, config);
   ahead.Process(frames[0], &frames[1]);
   plain.Process(frames[0], nullptr);
-  const FrameRecord skipped = ahead.Process(frames[2], nullptr);
-  const FrameRecord expected = plain.Process(frames[2], nullptr);
+  const FrameRecord skipped = ahead.Process(frames[2], nullptr).record;
+  const FrameRecord expected = plain.Process(frames[2], nullptr).record;
   EXPECT_TRUE(skipped.world_from_camera.matrix() == expected.world_from_camera.matrix());
   EXPECT_EQ(skipped.features_total, expected.features_total);
   EXPECT_EQ(skipped.mask_ok, expected.mask_ok);
   EXPECT_EQ(skipped.dynamic_ratio, expected.dynamic_ratio);
   EXPECT_GT(expected.world_from_camera.translation().norm(), 0.0);  // frame 2 was tracked, not seeded
   // Handed the frame it looked ahead for, the pipeline gives what it gives in turn.
-  OdometryPipeline ahead2(Camera{}, config), plain2(Camera{}, config);
+  OdometryPipeline ahead2(Camera{}, config, {}, &executor), plain2(Camera{}, config);
   ahead2.Process(frames[0], &frames[1]);
   plain2.Process(frames[0], nullptr);
-  EXPECT_TRUE(ahead2.Process(frames[1], nullptr).world_from_camera.matrix() ==
-      plain2.Process(frames[1], nullptr).world_from_camera.matrix());
-  // Ground-truth masks and the triplet need frame t's own state: they do not look ahead.
-  EXPECT_FALSE(OdometryPipeline(Camera{}, TruthMaskConfig()).LooksAhead());
-  config.dynamic_mask.backward = BackwardMode::kTriplet;
-  EXPECT_FALSE(OdometryPipeline(Camera{}, config).LooksAhead());
-  config.dynamic_mask.backward = BackwardMode::kReversePair;
-  config.run.lookahead = false;
-  EXPECT_FALSE(OdometryPipeline(Camera{}, config).LooksAhead());
+  const ProcessedFrame taken = ahead2.Process(frames[1], nullptr);
+  EXPECT_TRUE(taken.record.world_from_camera.matrix() == plain2.Process(frames[1], nullptr).record.world_from_camera.matrix());
+  EXPECT_EQ(taken.stages.mask.status, MaskStatus::kComputed);
 }
 
 }  // namespace

@@ -570,50 +570,6 @@ TEST(FrameTracker, MapStaysBoundedOver1000Frames) {
   EXPECT_LT(final_error, 0.2);    // 2 % of the distance travelled
 }
 
-// Local BA on a second thread must not change what the tracker computes: the map after each
-// frame and every non-keyframe pose are bitwise those of the BA run inside Track. Only a
-// keyframe's own output differs: it is the tracked pose, the BA's refinement reaches the motion
-// model when the next frame waits for it.
-TEST(FrameTracker, BackgroundBundleAdjustmentGivesTheSameMapAndPoses) {
-  const test::SyntheticWorld world = RoomWorld();
-  std::mt19937 rng(5);
-  test::RenderOptions render;
-  render.max_features = 400;
-  TrackerOptions foreground_options;
-  foreground_options.local_ba.background = false;
-  TrackerOptions background_options;
-  background_options.local_ba.background = true;
-  FrameTracker foreground(world.camera, foreground_options), background(world.camera, background_options);
-  int keyframes = 0, ba_reported = 0;
-  bool previous_was_keyframe = false;
-  for (int i = 0; i < 60; ++i) {
-    const FrameFeatures f = test::Render(world, SmoothPath(i).inverse(), render, rng);
-    const TrackingResult a = foreground.Track(f, i / kFrameRate);
-    const TrackingResult b = background.Track(f, i / kFrameRate);
-    ASSERT_EQ(a.keyframe_inserted, b.keyframe_inserted) << "frame " << i;
-    ASSERT_EQ(a.num_inliers, b.num_inliers) << "frame " << i;
-    if (!a.keyframe_inserted) {
-      EXPECT_TRUE(a.world_from_camera.isApprox(b.world_from_camera, 0.0)) << "frame " << i;
-    }
-    if (i > 0 && a.keyframe_inserted) {
-      ++keyframes;
-      EXPECT_GT(a.local_ba_ms, 0.0);
-      EXPECT_EQ(b.local_ba_ms, 0.0);  // started as Track returned
-    }
-    if (previous_was_keyframe && b.local_ba_ms > 0.0) ++ba_reported;  // reported by the next frame
-    previous_was_keyframe = i > 0 && a.keyframe_inserted;
-    const LocalMap& ma = foreground.map();
-    const LocalMap& mb = background.map();  // waits for the BA
-    ASSERT_EQ(ma.num_keyframes(), mb.num_keyframes());
-    ASSERT_EQ(ma.num_points(), mb.num_points());
-    for (size_t k = 0; k < ma.num_keyframes(); ++k)
-      EXPECT_TRUE(ma.keyframes()[k].camera_from_world.isApprox(mb.keyframes()[k].camera_from_world, 0.0))
-          << "frame " << i << " keyframe " << k;
-  }
-  EXPECT_GE(keyframes, 3);
-  EXPECT_GE(ba_reported, keyframes - 1);  // the last one may still be running
-}
-
 // Keyframes taken while the camera turns faster than max_ba_depth_rotation_deg_s keep their
 // depths out of BA (observation depth 0); slower ones keep them.
 TEST(FrameTracker, FastRotationKeyframeKeepsDepthOutOfBundleAdjustment) {

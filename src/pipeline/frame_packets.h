@@ -1,0 +1,71 @@
+#pragma once
+// The plain data the pipeline's stages hand on for one frame (papers/README.md §1, Fig. 5):
+// the mask stage's MaskPacket, the feature stage's FeaturePacket and the tracker's
+// TrackingResult, gathered in a FrameOutput that observers (debug panels, mask quality) read.
+
+#include <string>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "features/feature_filter.h"
+#include "tracking/frame_tracker.h"
+
+namespace dynvo {
+
+// What the mask stage did with a frame.
+enum class MaskStatus {
+  kOff,         // no mask source (the baseline)
+  kFirstFrame,  // differencing: no previous frame to difference
+  kFailed,      // differencing: no mask this frame (MaskPacket::failure says why)
+  kComputed,    // differencing gave a mask
+  kGiven,       // the sequence's ground-truth mask
+};
+
+// "off", "first_frame", "failed", "computed", "given".
+std::string ToString(MaskStatus status);
+
+// The dynamic mask of frame `frame`: from its source, then through the mask refinements.
+struct MaskPacket {
+  size_t frame = 0;
+  MaskStatus status = MaskStatus::kOff;
+  std::string failure;  // kFailed: the detector's reason
+  cv::Mat mask;         // CV_8UC1, 255 = dynamic; empty = no mask
+  double dynamic_ratio = 0.0;  // share of `mask`'s pixels
+  int threshold = -1;          // grey level the forward difference was binarised at (kComputed)
+  // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
+  // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
+  bool has_motion = false;
+  Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();
+  double ms = 0.0;  // wall time of the source and the refinements
+  bool refined = false;  // a refinement changed the mask (dynamic_ratio is then recomputed)
+  // Intermediate images, for observers (empty when not computed):
+  cv::Mat compensated, difference, forward_mask, backward_mask;  // differencing (Fig. 1 / 3)
+  cv::Mat change_seeds;   // depth change, as seeds of the map occlusion
+  cv::Mat depth_change;   // the depth change carried into frame t (joined or seeds)
+  cv::Mat map_occlusion_candidates, map_occlusion;  // the carried map occlusion; what joined
+
+  bool ok() const { return status == MaskStatus::kComputed || status == MaskStatus::kGiven; }
+  // Adds `region` (same size, CV_8UC1) to the mask; marks the mask refined unless it is empty.
+  void Join(const cv::Mat& region);
+};
+
+// Frame t's features, split by its mask.
+struct FeaturePacket {
+  size_t frame = 0;
+  FeatureSplit split;   // kept (for the pose) and removed (on the mask)
+  cv::Mat described;    // refill_from_background: frame t as the refill described it
+  double features_ms = 0.0;  // extraction, background fill and refill
+  double filter_ms = 0.0;    // splitting by the mask
+};
+
+// Everything the pipeline produced for one frame.
+struct FrameOutput {
+  MaskPacket mask;
+  FeaturePacket features;
+  TrackingResult tracking;
+  double refinement_upkeep_ms = 0.0;  // after tracking: what the refinements carry to frame t+1
+  double processing_ms = 0.0;         // the whole frame, wall time
+};
+
+}  // namespace dynvo

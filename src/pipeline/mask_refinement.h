@@ -1,0 +1,23 @@
+#pragma once
+// The second stage of the pipeline: refinements of the source's mask, each owning what it
+// carries between frames. Refine runs on frame t's mask before the features are split by it;
+// Observe runs once frame t is tracked, to prepare what Refine carries into frame t+1 (with
+// the source's ego-motion homography, one frame of lag).
+
+#include "dataset/tum_dataset.h"
+#include "mapping/local_map.h"
+#include "pipeline/frame_packets.h"
+#include "tracking/frame_tracker.h"
+
+namespace dynvo {
+
+class MaskRefinement {
+ public:
+  virtual ~MaskRefinement() = default;
+  // Changes frame t's mask (or its seeds); adds its wall time to `mask->ms`.
+  virtual void Refine(const RgbdFrame& frame, MaskPacket* mask) = 0;
+  // Frame t was tracked (`tracking`, the local map `map` after it).
+  virtual void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) = 0;
+};
+
+}  // namespace dynvo

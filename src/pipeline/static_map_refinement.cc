@@ -1,0 +1,65 @@
+#include "pipeline/static_map_refinement.h"
+
+#include <chrono>
+#include <vector>
+
+#include "dynamic_mask/mask_regions.h"
+#include "dynamic_mask/motion_compensation.h"
+
+namespace dynvo {
+
+bool MapOcclusionPossible(const RgbdFrame& frame, const TrackingResult& tracking) {
+  return !frame.depth.empty() && tracking.state == TrackingState::kTracking;
+}
+
+StaticMapRefinement::StaticMapRefinement(const Camera& camera, const MapOcclusionOptions& occlusion,
+                                         const DepthTrimOptions& trim)
+    : camera_(camera), occlusion_options_(occlusion), trim_options_(trim) {}
+
+void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool carry_occlusion = !occlusion_.empty() && mask->has_motion;
+  const bool carry_explained = trim_options_.enabled && !explained_.empty() && mask->has_motion;
+  std::vector<cv::Mat> carried(3);  // occlusion, kept occlusion, explained (empty: not carried)
+  if (carry_occlusion || carry_explained)
+    carried = WarpBinaryMasks({carry_occlusion ? occlusion_ : cv::Mat(),
+                               carry_occlusion && occlusion_options_.seeded ? kept_occlusion_ : cv::Mat(),
+                               carry_explained ? explained_ : cv::Mat()},
+                              mask->current_from_previous, frame.gray.size());
+  if (carry_occlusion) {
+    cv::Mat occlusion = carried[0];
+    if (occlusion_options_.seeded) {
+      cv::Mat seeds = MaskUnion(mask->mask, mask->change_seeds);
+      if (!kept_occlusion_.empty()) seeds = MaskUnion(seeds, carried[1]);
+      mask->map_occlusion_candidates = occlusion;
+      occlusion = RegionsTouching(occlusion, seeds);  // no seeds: nothing kept
+      kept_occlusion_ = occlusion;
+    }
+    mask->Join(occlusion);
+    mask->map_occlusion = occlusion;
+  } else {
+    kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
+  }
+  const cv::Mat& explained = carried[2];
+  if (!explained.empty() && !mask->mask.empty() && !frame.depth.empty() && cv::countNonZero(mask->mask) > 0)
+  {
+    mask->mask = TrimMaskToNearSurface(mask->mask, frame.depth, explained, trim_options_);
+    mask->refined = true;
+  }
+  mask->ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void StaticMapRefinement::Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) {
+  explained_.release();
+  occlusion_.release();
+  if (!MapOcclusionPossible(frame, tracking)) return;
+  // The points tracking trusts (unconfirmed ones may lie on what moves), in this camera's frame.
+  const Pose camera_from_world = tracking.world_from_camera.inverse();
+  std::vector<Eigen::Vector3d> points_in_camera;
+  for (const auto& [id, point] : map.points())
+    if (point.unconfirmed_frames == 0) points_in_camera.push_back(camera_from_world * point.position_in_world);
+  occlusion_ = MapOcclusionMask(frame.depth, points_in_camera, camera_, occlusion_options_,
+                                trim_options_.enabled ? &explained_ : nullptr);
+}
+
+}  // namespace dynvo

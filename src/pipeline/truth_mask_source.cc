@@ -1,0 +1,51 @@
+#include "pipeline/truth_mask_source.h"
+
+#include <chrono>
+#include <string>
+
+#include "core/error.h"
+#include "dynamic_mask/dynamic_mask_detector.h"
+
+namespace dynvo {
+namespace {
+
+// Throws InputError naming the frame unless `mask` is a CV_8UC1 image of the frame's size.
+void CheckTruthMask(const RgbdFrame& frame, const cv::Mat& mask) {
+  const std::string where = "frame " + std::to_string(frame.index) + " (stamp " + std::to_string(frame.stamp) + "): ";
+  if (mask.empty())
+    throw InputError(where + "dynamic_mask.source \"ground_truth\" needs the frame's ground-truth mask; there is none");
+  if (mask.type() != CV_8UC1 || mask.size() != frame.gray.size())
+    throw InputError(where + "the ground-truth mask must be 8-bit 1-channel and the size of the image");
+}
+
+}  // namespace
+
+TruthMaskSource::TruthMaskSource(const KltOptions& klt, const HomographyOptions& homography, bool estimate_motion)
+    : klt_(klt), homography_(homography), estimate_motion_(estimate_motion) {}
+
+MaskPacket TruthMaskSource::Compute(const MaskSourceInput& input) {
+  const RgbdFrame& frame = input.frame;
+  CheckTruthMask(frame, input.truth_mask);
+  const auto start = std::chrono::steady_clock::now();
+  MaskPacket packet;
+  packet.frame = frame.index;
+  if (estimate_motion_) {
+    // Each frame's pyramid is built once and kept for the next call, as the detector does.
+    const TrackingPyramid current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
+    if (!previous_pyramid_.empty()) {
+      const PointTracks tracks = TrackPoints(
+          previous_pyramid_, current_pyramid, DetectCorners(previous_pyramid_, klt_, input.previous_mask), klt_);
+      const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, homography_);
+      packet.has_motion = h.ok;
+      packet.current_from_previous = h.current_from_previous;
+    }
+    previous_pyramid_ = current_pyramid;
+  }
+  packet.status = MaskStatus::kGiven;
+  packet.mask = input.truth_mask != 0;
+  packet.dynamic_ratio = DynamicRatio(packet.mask);
+  packet.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return packet;
+}
+
+}  // namespace dynvo
