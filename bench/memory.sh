@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peak memory (RSS) of a whole `dynvo-cli run` in paper mode and with configs/occlusion.json on
+# Peak memory (RSS) of a whole `dynvo-cli run` in paper mode and with configs/dynvo.json on
 # a generated 900-frame
 # sequence (the local map is bounded: memory must not grow with sequence length), read
 # from run.json ("memory.peak_rss_mb", getrusage). Writes bench/results/memory.md and memory.csv
@@ -21,7 +21,7 @@ seq="$work/synth_walking_across_halfsphere_$frames"
   --frames "$frames" --seed 1 --out "$seq" --force >&2
 
 runs=()
-for config in paper occlusion; do
+for config in paper dynvo; do
   for n in $((frames / 3)) "$frames"; do
     runs+=("$work/${config}_$n")
     "$bin/dynvo-cli" run --quiet --force --dataset "$seq" --config "$root/configs/$config.json" \

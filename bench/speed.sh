@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Per-frame processing cost of dynvo (paper, baseline and occlusion configs, paper and occlusion
+# Per-frame processing cost of dynvo (paper, baseline and dynvo configs, paper and dynvo
 # also on one thread, without the look-ahead) against OpenCV's
 # RgbdOdometry and ICPOdometry on the same in-memory frames, in the same process
 # (bench/odometry_speed.cc): median over frames, median of RUNS runs, ratio to RgbdOdometry (per run, interleaved),
@@ -29,13 +29,13 @@ sequences+=("$synth")
 
 rm -f "$work"/*.json  # the table is this run's alone
 for seq in "${sequences[@]}"; do
-  for mode in paper baseline occlusion; do
+  for mode in paper baseline dynvo; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
       --json "$work/$(basename "$seq")_$mode.json" >&2
   done
-  # Paper mode and configs/occlusion.json on one thread: each frame's stages in turn, in its own
+  # Paper mode and configs/dynvo.json on one thread: each frame's stages in turn, in its own
   # call (the same results).
-  for mode in paper occlusion; do
+  for mode in paper dynvo; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
       --threads 1 --json "$work/$(basename "$seq")_${mode}_in_turn.json" >&2
   done

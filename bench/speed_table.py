@@ -49,7 +49,7 @@ print()
 print("Per-stage split of dynvo (median / mean ms per frame). On more than one thread a frame's "
       "ORB features and dynamic mask are computed during the call before, beside that frame's "
       "tracking, so their times are their own durations and not part of the frame's time above "
-      "(with the additions of configs/occlusion.json the mask stage also holds the depth change, "
+      "(with the refinements of configs/dynvo.json the mask stage also holds the depth change, "
       "the map occlusion and the trim, computed in the frame's own call). On one thread every "
       "stage runs in turn. Local BA runs at keyframes only (median 0):")
 print()

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The benchmark suite: dev and validation splits of generated dynamic sequences (people inserted
-# into real TUM frames, and synthetic scenes), each run with the baseline, paper and occlusion
+# into real TUM frames, and synthetic scenes), each run with the baseline, paper and dynvo
 # configs and compared with its twin without people. Builds the binaries, then runs
 # bench/suite.py (all the logic; its docstring tells the rest). Writes
 # bench/results/suite_<split>.csv and suite_<split>.md.
-#   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,occlusion]
+#   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,dynvo]
 #                       [--out DIR] [--jobs N]
 #   bash bench/suite.sh table --split dev      (the Markdown again from the CSV; no build, no runs)
 #   (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR)

@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # Fills the generated blocks of README.md and docs/*.md: the config key table (from `dynvo-cli
 # config-keys --markdown`) and the results tables (from bench/results/*.md, written by the
-# benchmark scripts), after bench/targets.sh has made the targets table from their figures.
+# benchmark scripts).
 # Runs no benchmark itself.
 #   bash bench/update_readme.sh     (env: DYNVO_BUILD_DIR)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${DYNVO_BUILD_DIR:-$root/build}"
 cmake --build "$build" --target dynvo-cli >/dev/null
-bash "$root/bench/targets.sh" >/dev/null
 keys="$(mktemp)"
 trap 'rm -f "$keys"' EXIT
 "$build/bin/dynvo-cli" config-keys --markdown > "$keys"

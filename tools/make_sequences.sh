@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Generates the dynamic test sequences that need no download, into one folder, and prints
 # the path of each sequence folder on stdout (one a line, in this order).
-# --set realistic (the default): people as TUM films them (articulated photo people, in view
-# from the first frame, Kinect timing, motion blur):
+# People as TUM films them (articulated photo people, in view from the first frame, Kinect
+# timing, motion blur):
 #   synth_none_xyz                  dynvo-synth, camera path xyz, no people: the static twin
 #   synth_tum_<scenario>_xyz        dynvo-synth, same camera path, scenarios tum_walking,
 #                                   tum_toward, tum_away, tum_sitting
@@ -10,13 +10,10 @@
 #                                   the other camera paths (rotation, orbit) with their twins
 #   fr1_rpy_head150_tum_<preset>    dynvo-insert-people into the real fr1_rpy_head150, the four
 #                                   TUM presets (only when the project's shared data is present)
-# --set box: the older box-people scenarios (walking_across, two_crossing, walking_toward,
-# sitting_sway; two_crossing on rpy and halfsphere; insertion presets walking_across and
-# two_crossing), on which bench/accuracy.sh, scene_seeds.sh and ratio_spread.sh were measured.
 # A sequence already there is kept when it is what would be generated (same scenario, camera
 # path, seed and frame count, read from its rgb.txt), else it is generated again.
 # Used by tools/table1.py and the bench scripts; they build the binaries first.
-#   bash tools/make_sequences.sh --out DIR [--frames 300] [--seed 1] [--set realistic|box]
+#   bash tools/make_sequences.sh --out DIR [--frames 300] [--seed 1]
 #   (env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin; DYNVO_SHARED_DIR, default ../shared)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -26,25 +23,19 @@ shared="${DYNVO_SHARED_DIR:-$root/../shared}"
 out=""
 frames=300
 seed=1
-set_name=realistic
 while [ $# -gt 0 ]; do
   case "$1" in
     --out) out="$2"; shift 2 ;;
     --frames) frames="$2"; shift 2 ;;
     --seed) seed="$2"; shift 2 ;;
-    --set) set_name="$2"; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
-    *) echo "make_sequences: error: unknown argument '$1' (expected --out DIR, --frames N, --seed K, --set S)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    *) echo "make_sequences: error: unknown argument '$1' (expected --out DIR, --frames N, --seed K)" >&2; exit 2 ;;
   esac
 done
 [ -n "$out" ] || { echo "make_sequences: error: --out DIR is required" >&2; exit 2; }
-case "$set_name" in
-  realistic) scenarios="tum_walking tum_toward tum_away tum_sitting"; others=tum_walking
-             presets="tum_walking tum_toward tum_away tum_sitting" ;;
-  box) scenarios="walking_across two_crossing walking_toward sitting_sway"; others=two_crossing
-       presets="walking_across two_crossing" ;;
-  *) echo "make_sequences: error: --set must be realistic or box, got '$set_name'" >&2; exit 2 ;;
-esac
+scenarios="tum_walking tum_toward tum_away tum_sitting"
+others=tum_walking
+presets="tum_walking tum_toward tum_away tum_sitting"
 mkdir -p "$out"
 
 synth() {  # name scenario camera_path

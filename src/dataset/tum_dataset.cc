@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 #include "dataset/camera_file.h"
 #include "dataset/stamp_matching.h"
@@ -235,6 +236,14 @@ cv::Mat TumDataset::LoadMask(size_t i) const {
   cv::remap(mask, undistorted, nearest_map_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT,
             cv::Scalar::all(0));
   return undistorted;
+}
+
+void BindConfigKeys(const std::string& prefix, TumDatasetOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".max_time_difference", &o->max_time_difference,
+          "seconds; RGB and depth stamps further apart are not associated");
+  r->Bind(prefix + ".depth_factor", &o->depth_factor, "depth PNG value per metre (TUM: 5000)");
+  r->Bind(prefix + ".undistort", &o->undistort,
+          "remap images to an undistorted pinhole camera when the camera has distortion");
 }
 
 }  // namespace dynvo

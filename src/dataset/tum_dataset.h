@@ -16,6 +16,8 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct TumDatasetOptions {
   double max_time_difference = 0.02;  // s, RGB-depth association (strictly below)
   double depth_factor = 5000.0;       // PNG value per metre; camera.json "depth_factor" wins
@@ -26,6 +28,9 @@ struct TumDatasetOptions {
   // "dataset.camera" when a value is out of range.
   void Check() const;
 };
+
+// The config keys of the reader (section "dataset"): max_time_difference, depth_factor, undistort.
+void BindConfigKeys(const std::string& prefix, TumDatasetOptions* options, ConfigRegistry* registry);
 
 struct RgbdFrame {
   size_t index = 0;

@@ -7,6 +7,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -66,6 +67,13 @@ cv::Mat DepthChangeMask(const cv::Mat& depth, const cv::Mat& earlier_depth, cons
   if (options.open_px > 1)
     cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat::ones(options.open_px, options.open_px, CV_8UC1));
   return mask;
+}
+
+void BindConfigKeys(const std::string& prefix, DepthChangeOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled,
+          "the pixels whose depth changed between the last frame and the one 3 before it, by their "
+          "estimated poses (what moves along the line of sight), seed the map occlusion: the occlusion "
+          "regions they touch join the mask (needs map_occlusion.enabled)");
 }
 
 }  // namespace dynvo

@@ -5,6 +5,8 @@
 // the current depth image is carried into an earlier frame by the relative camera pose and its
 // depth compared with that frame's measurement there.
 
+#include <string>
+
 #include <opencv2/core.hpp>
 
 #include "core/camera.h"
@@ -12,19 +14,22 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 // Config section "depth_change".
 struct DepthChangeOptions {
-  bool enabled = false;     // add the depth-change mask to the dynamic mask (paper mode only)
+  bool enabled = false;     // the pipeline seeds the map occlusion with it (static_map_refinement.h)
   int frames = 3;           // compare with the depth image this many frames back (1-10)
   double threshold = 0.02;  // relative depth change that marks a pixel (0-1, exclusive of 0)
   int open_px = 5;          // side of the square opening that drops specks (0 = none, <= 31)
   double max_share = 0.25;  // a mask over more of the image is dropped (the poses disagree) (0-1]
-  bool seeds_only = false;  // the mask only seeds the seeded map occlusion (which of its regions
-                            // join the mask) and does not join the mask itself (OdometryPipeline)
 
   // Throws InputError naming the key "depth_change.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of the depth change (section "depth_change"): enabled.
+void BindConfigKeys(const std::string& prefix, DepthChangeOptions* options, ConfigRegistry* registry);
 
 // Pixels of `depth` (CV_32FC1 metres, 0 = none) whose point, carried into the earlier frame by
 // `earlier_from_current`, lands on a measured pixel of `earlier_depth` (same size) and differs

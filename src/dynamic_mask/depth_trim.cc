@@ -8,6 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 #include "dynamic_mask/difference_threshold.h"
 
@@ -118,6 +119,13 @@ cv::Mat TrimMaskToNearSurface(const cv::Mat& mask, const cv::Mat& depth, const c
     }
   }
   return trimmed;
+}
+
+void BindConfigKeys(const std::string& prefix, DepthTrimOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled,
+          "trim each region of the mask to its near surface: where its depths fall into two groups "
+          "(Otsu) and the static map explains the farther one (the background behind what moves), that "
+          "one is dropped (needs map_occlusion.enabled)");
 }
 
 }  // namespace dynvo

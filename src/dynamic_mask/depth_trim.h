@@ -6,9 +6,13 @@
 // map explains it; a person walking behind a static desk is the farther group too, but stands
 // in front of the map.
 
+#include <string>
+
 #include <opencv2/core.hpp>
 
 namespace dynvo {
+
+class ConfigRegistry;
 
 // Config section "depth_trim".
 struct DepthTrimOptions {
@@ -22,6 +26,9 @@ struct DepthTrimOptions {
   // Throws InputError naming the key "depth_trim.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of the trim (section "depth_trim"): enabled.
+void BindConfigKeys(const std::string& prefix, DepthTrimOptions* options, ConfigRegistry* registry);
 
 // `mask` (CV_8UC1, non-zero = masked) without, in each 8-connected region of at least
 // min_region_px pixels, the pixels of the farther of two depth groups (Otsu's split of the

@@ -1,5 +1,6 @@
 #include "dynamic_mask/dynamic_mask_options.h"
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -77,6 +78,35 @@ std::string ToString(BackwardMode mode) {
     case BackwardMode::kTriplet: return "triplet";
   }
   return "?";
+}
+
+void BindConfigKeys(const std::string& prefix, DynamicMaskOptions* o, ConfigRegistry* r) {
+  r->BindChoice(
+      prefix + ".threshold", {"otsu", "fixed"}, [o] { return ToString(o->threshold); },
+      [o, prefix](const std::string& s) { o->threshold = ParseThresholdMethod(s, prefix + ".threshold"); },
+      "binarisation of the difference image (paper: otsu)");
+  r->Bind(prefix + ".fixed_threshold", &o->fixed_threshold, "grey levels, with threshold \"fixed\"");
+  r->Bind(prefix + ".min_otsu_threshold", &o->min_otsu_threshold,
+          "grey levels; Otsu's threshold is raised to at least this (0 = paper)");
+  r->Bind(prefix + ".difference_level", &o->difference_level,
+          "pyramid level of the differencing (0 = full size, the paper; 1 = half size)");
+  r->Bind(prefix + ".erode_kernel_size", &o->erode_kernel_size, "pixels (paper: 4)");
+  r->BindChoice(
+      prefix + ".erode_shape", {"rect", "ellipse", "cross"}, [o] { return ToString(o->erode_shape); },
+      [o, prefix](const std::string& s) { o->erode_shape = ParseMorphShape(s, prefix + ".erode_shape"); },
+      "erosion kernel shape");
+  r->Bind(prefix + ".erode_iterations", &o->erode_iterations, "erosion iterations (paper: 2)");
+  r->Bind(prefix + ".dilate_kernel_size", &o->dilate_kernel_size, "pixels (paper: 16)");
+  r->BindChoice(
+      prefix + ".dilate_shape", {"rect", "ellipse", "cross"}, [o] { return ToString(o->dilate_shape); },
+      [o, prefix](const std::string& s) { o->dilate_shape = ParseMorphShape(s, prefix + ".dilate_shape"); },
+      "dilation kernel shape");
+  r->Bind(prefix + ".dilate_iterations", &o->dilate_iterations, "dilation iterations (paper: 1)");
+  r->BindChoice(
+      prefix + ".backward", {"none", "reverse_pair", "triplet"}, [o] { return ToString(o->backward); },
+      [o, prefix](const std::string& s) { o->backward = ParseBackwardMode(s, prefix + ".backward"); },
+      "backward detection: none, t-1 against t, or t+1 against t (one frame of latency)");
+  r->Bind(prefix + ".rounds", &o->rounds, "mask / homography re-estimation rounds");
 }
 
 }  // namespace dynvo

@@ -5,6 +5,8 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 // How the difference image is binarised.
 enum class ThresholdMethod { kOtsu, kFixed };
 // Structuring element of erosion and dilation (cv::MORPH_RECT / ELLIPSE / CROSS).
@@ -34,6 +36,9 @@ struct DynamicMaskOptions {
   // Throws InputError naming the key ("dynamic_mask.<field>") of the first bad value.
   void Check() const;
 };
+
+// The config keys of the differencing (section "dynamic_mask"): threshold, morphology, backward detection, rounds, level.
+void BindConfigKeys(const std::string& prefix, DynamicMaskOptions* options, ConfigRegistry* registry);
 
 // Parse helpers for the config: "otsu"/"fixed", "rect"/"ellipse"/"cross", "none"/"reverse_pair"/"triplet";
 // throw InputError naming `key` and the allowed values.

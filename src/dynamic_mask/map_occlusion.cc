@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -89,6 +90,14 @@ cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d
   if (options.grow_px > 0)
     cv::dilate(mask, mask, cv::Mat::ones(2 * options.grow_px + 1, 2 * options.grow_px + 1, CV_8UC1));
   return mask;
+}
+
+void BindConfigKeys(const std::string& prefix, MapOcclusionOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled,
+          "the regions the last frame measured in front of the static map (carried into this frame by "
+          "the homography) join the mask where they touch it, the depth change or a region kept the "
+          "frame before");
+  r->Bind(prefix + ".grow_px", &o->grow_px, "the occlusion mask is dilated by this on every side (0-64)");
 }
 
 }  // namespace dynvo

@@ -4,6 +4,7 @@
 // its whole body, textured or not, while frame differencing only sees where its texture
 // moves. Static objects the map has points on are never in front of themselves.
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -12,6 +13,8 @@
 #include "core/camera.h"
 
 namespace dynvo {
+
+class ConfigRegistry;
 
 // Config section "map_occlusion".
 struct MapOcclusionOptions {
@@ -24,12 +27,13 @@ struct MapOcclusionOptions {
   double absolute_margin_m = 0.05; // those map points minus this (relative in [0, 1), metres >= 0)
   int open_px = 5;                 // side of the square opening that drops specks (0 = none, <= 31)
   int grow_px = 8;                 // the mask is dilated by this on every side (0-64)
-  bool seeded = false;             // the pipeline keeps only the regions that touch the detector's mask
-                                   // or a region it kept the frame before (OdometryPipeline, step 1c)
 
   // Throws InputError naming the key "map_occlusion.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of the map occlusion (section "map_occlusion"): enabled, grow_px.
+void BindConfigKeys(const std::string& prefix, MapOcclusionOptions* options, ConfigRegistry* registry);
 
 // Pixels of `depth` (CV_32FC1 metres, 0 = none) nearer than every map point (`points_in_camera`,
 // the static map in this camera's frame) that projects into their grid neighbourhood, by the

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -211,14 +212,14 @@ std::vector<int> AllIndices(size_t n) {
 }  // namespace
 
 void HomographyOptions::Check() const {
-  Require(ransac_threshold_px > 0.0, "ego_motion.ransac_threshold_px must be > 0, got " +
+  Require(ransac_threshold_px > 0.0, "homography.ransac_threshold_px must be > 0, got " +
                                          std::to_string(ransac_threshold_px));
-  Require(ransac_iterations >= 1, "ego_motion.ransac_iterations must be >= 1, got " +
+  Require(ransac_iterations >= 1, "homography.ransac_iterations must be >= 1, got " +
                                       std::to_string(ransac_iterations));
   Require(ransac_confidence > 0.0 && ransac_confidence <= 1.0,
-          "ego_motion.ransac_confidence must be in (0, 1], got " + std::to_string(ransac_confidence));
-  Require(min_inliers >= 4, "ego_motion.min_inliers must be >= 4, got " + std::to_string(min_inliers));
-  Require(refine_iterations >= 0, "ego_motion.refine_iterations must be >= 0, got " +
+          "homography.ransac_confidence must be in (0, 1], got " + std::to_string(ransac_confidence));
+  Require(min_inliers >= 4, "homography.min_inliers must be >= 4, got " + std::to_string(min_inliers));
+  Require(refine_iterations >= 0, "homography.refine_iterations must be >= 0, got " +
                                       std::to_string(refine_iterations));
 }
 
@@ -384,6 +385,10 @@ HomographyEstimate EstimateHomography(const std::vector<cv::Point2f>& previous, 
   }
   estimate.rms_error_px = std::sqrt(sum / std::max<size_t>(inliers.size(), 1));
   return estimate;
+}
+
+void BindConfigKeys(const std::string& prefix, HomographyOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".seed", &o->seed, "homography RANSAC random seed");
 }
 
 }  // namespace dynvo

@@ -11,6 +11,8 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct HomographyOptions {
   double ransac_threshold_px = 2.0;  // inlier reprojection threshold, pixels in the current image
   int ransac_iterations = 500;       // maximum RANSAC hypotheses
@@ -19,9 +21,12 @@ struct HomographyOptions {
   bool refine = true;                // Levenberg-Marquardt on inlier reprojection error (eq. 4)
   int refine_iterations = 20;        // LM iterations at most
   unsigned seed = 1;                 // RANSAC random seed
-  // Throws InputError naming the key ("ego_motion.<field>") of the first bad value.
+  // Throws InputError naming the key ("homography.<field>") of the first bad value.
   void Check() const;
 };
+
+// The config keys of the homography (section "homography"): seed.
+void BindConfigKeys(const std::string& prefix, HomographyOptions* options, ConfigRegistry* registry);
 
 struct HomographyEstimate {
   bool ok = false;

@@ -25,23 +25,23 @@ void CheckGray(const cv::Mat& image, const char* what) {
 }  // namespace
 
 void KltOptions::Check() const {
-  Require(max_corners >= 1, "ego_motion.max_corners must be >= 1, got " + std::to_string(max_corners));
+  Require(max_corners >= 1, "klt.max_corners must be >= 1, got " + std::to_string(max_corners));
   Require(quality_level > 0.0 && quality_level <= 1.0,
-          "ego_motion.quality_level must be in (0, 1], got " + std::to_string(quality_level));
-  Require(min_distance_px >= 0.0, "ego_motion.min_distance_px must be >= 0, got " + std::to_string(min_distance_px));
+          "klt.quality_level must be in (0, 1], got " + std::to_string(quality_level));
+  Require(min_distance_px >= 0.0, "klt.min_distance_px must be >= 0, got " + std::to_string(min_distance_px));
   Require(window_size_px >= 3 && window_size_px % 2 == 1,
-          "ego_motion.window_size_px must be odd and >= 3, got " + std::to_string(window_size_px));
+          "klt.window_size_px must be odd and >= 3, got " + std::to_string(window_size_px));
   Require(pyramid_levels >= 0 && pyramid_levels <= 8,
-          "ego_motion.pyramid_levels must be in [0, 8], got " + std::to_string(pyramid_levels));
-  Require(max_forward_backward_error_px > 0.0, "ego_motion.max_forward_backward_error_px must be > 0, got " +
+          "klt.pyramid_levels must be in [0, 8], got " + std::to_string(pyramid_levels));
+  Require(max_forward_backward_error_px > 0.0, "klt.max_forward_backward_error_px must be > 0, got " +
                                                    std::to_string(max_forward_backward_error_px));
-  Require(lk_max_iterations >= 1, "ego_motion.lk_max_iterations must be >= 1, got " +
+  Require(lk_max_iterations >= 1, "klt.lk_max_iterations must be >= 1, got " +
                                       std::to_string(lk_max_iterations));
-  Require(lk_epsilon_px > 0.0, "ego_motion.lk_epsilon_px must be > 0, got " + std::to_string(lk_epsilon_px));
-  Require(border_margin_px >= 0, "ego_motion.border_margin_px must be >= 0, got " +
+  Require(lk_epsilon_px > 0.0, "klt.lk_epsilon_px must be > 0, got " + std::to_string(lk_epsilon_px));
+  Require(border_margin_px >= 0, "klt.border_margin_px must be >= 0, got " +
                                      std::to_string(border_margin_px));
   Require(detection_level >= 0 && detection_level <= pyramid_levels,
-          "ego_motion.detection_level must be in [0, ego_motion.pyramid_levels], got " +
+          "klt.detection_level must be in [0, klt.pyramid_levels], got " +
               std::to_string(detection_level));
 }
 
@@ -111,7 +111,7 @@ std::vector<cv::Point2f> DetectCorners(const TrackingPyramid& pyramid, const Klt
   Require(!pyramid.empty(), "DetectCorners needs a built pyramid");
   CheckExclude(exclude, pyramid.size);
   Require(options.detection_level <= pyramid.max_level,
-          "DetectCorners: the pyramid has fewer levels than ego_motion.detection_level");
+          "DetectCorners: the pyramid has fewer levels than klt.detection_level");
   // Pyramids built with derivatives interleave image and derivative levels.
   const int stride = static_cast<int>(pyramid.levels.size()) / (pyramid.max_level + 1);
   return DetectOnLevel(pyramid.levels[options.detection_level * stride], options.detection_level, options, exclude);
@@ -122,7 +122,7 @@ PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to,
   Require(!from.empty() && !to.empty(), "TrackPoints needs two built pyramids");
   Require(from.size == to.size, "TrackPoints needs pyramids of images of the same size");
   Require(from.window_size_px >= options.window_size_px && to.window_size_px >= options.window_size_px,
-          "TrackPoints: pyramids were built for a smaller window than ego_motion.window_size_px");
+          "TrackPoints: pyramids were built for a smaller window than klt.window_size_px");
   PointTracks tracks;
   if (points.empty()) return tracks;
 

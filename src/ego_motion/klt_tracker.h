@@ -21,7 +21,7 @@ struct KltOptions {
   int border_margin_px = 2;                    // tracks ending closer to the image border are dropped, pixels
   int detection_level = 1;                     // pyramid level corners are detected on (0 = full size; 1 is ~6x
                                                // cheaper and tracks as well); min_distance_px stays in full-size px
-  // Throws InputError naming the key ("ego_motion.<field>") of the first bad value.
+  // Throws InputError naming the key ("klt.<field>") of the first bad value.
   void Check() const;
 };
 

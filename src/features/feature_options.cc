@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -51,6 +52,30 @@ std::string ToString(FeatureDistribution distribution) {
       return "none";
   }
   return "quadtree";
+}
+
+void BindConfigKeys(const std::string& prefix, FeatureOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".num_features", &o->num_features, "ORB features per frame");
+  r->Bind(prefix + ".scale_factor", &o->scale_factor, "pyramid scale between levels");
+  r->Bind(prefix + ".num_levels", &o->num_levels, "pyramid levels");
+  r->Bind(prefix + ".fast_threshold", &o->fast_threshold, "FAST threshold");
+  r->Bind(prefix + ".min_fast_threshold", &o->min_fast_threshold, "FAST threshold retried in empty cells");
+  r->BindChoice(
+      prefix + ".distribution", {"quadtree", "grid", "none"}, [o] { return ToString(o->distribution); },
+      [o, prefix](const std::string& s) { o->distribution = ParseFeatureDistribution(s, prefix + ".distribution"); },
+      "how features are spread over the image");
+  r->Bind(prefix + ".min_depth_m", &o->min_depth_m, "nearer depth gives no 3D point");
+  r->Bind(prefix + ".max_depth_m", &o->max_depth_m, "farther depth gives no 3D point");
+  r->Bind(prefix + ".refill_outside_mask", &o->refill_outside_mask,
+          "when the dynamic mask removes features, detect them again outside the mask grown by "
+          "refill_margin_px, so the whole budget lands on the static part");
+  r->Bind(prefix + ".refill_margin_px", &o->refill_margin_px, "pixels the mask is grown by for the refill (0-64)");
+  r->Bind(prefix + ".refill_from_background", &o->refill_from_background,
+          "with refill_outside_mask: the refill describes the frame with the mask's pixels taken from the "
+          "static background of earlier frames (carried by the ego-motion homography) instead of what moves");
+  r->Bind(prefix + ".refill_reuse_corners", &o->refill_reuse_corners,
+          "with refill_outside_mask: the refill chooses again among the corners the first extraction detected "
+          "off the grown mask instead of detecting them again (no second detection pass)");
 }
 
 }  // namespace dynvo

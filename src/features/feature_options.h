@@ -5,6 +5,8 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 // How detected corners are spread over the image before description.
 enum class FeatureDistribution { kQuadtree, kGrid, kNone };
 
@@ -34,6 +36,9 @@ struct FeatureOptions {
   // Throws InputError naming the key "features.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of the features (section "features"): ORB budget and pyramid, spreading, depth range, refill.
+void BindConfigKeys(const std::string& prefix, FeatureOptions* options, ConfigRegistry* registry);
 
 // "quadtree" / "grid" / "none"; throws InputError naming `key` otherwise.
 FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key);

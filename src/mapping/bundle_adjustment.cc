@@ -11,6 +11,7 @@
 #include <ceres/ceres.h>
 #include <ceres/manifold.h>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 #include "mapping/rgbd_reprojection_error.h"
 #include "pose/reprojection_error.h"
@@ -18,12 +19,12 @@
 namespace dynvo {
 
 void BundleAdjustmentOptions::Check() const {
-  RequireOption(window_keyframes >= 1, "local_ba", "window_keyframes", ">= 1", window_keyframes);
-  RequireOption(max_iterations >= 1, "local_ba", "max_iterations", ">= 1", max_iterations);
-  RequireOption(rounds >= 1, "local_ba", "rounds", ">= 1", rounds);
-  RequireOption(huber_delta_px > 0.0, "local_ba", "huber_delta_px", "> 0", huber_delta_px);
-  RequireOption(outlier_threshold_px > 0.0, "local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
-  RequireOption(virtual_baseline_m >= 0.0, "local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
+  RequireOption(window_keyframes >= 1, "tracking.local_ba", "window_keyframes", ">= 1", window_keyframes);
+  RequireOption(max_iterations >= 1, "tracking.local_ba", "max_iterations", ">= 1", max_iterations);
+  RequireOption(rounds >= 1, "tracking.local_ba", "rounds", ">= 1", rounds);
+  RequireOption(huber_delta_px > 0.0, "tracking.local_ba", "huber_delta_px", "> 0", huber_delta_px);
+  RequireOption(outlier_threshold_px > 0.0, "tracking.local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
+  RequireOption(virtual_baseline_m >= 0.0, "tracking.local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
 }
 
 namespace {
@@ -286,6 +287,13 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
   MeasureAndPrune(camera, bf, threshold_sq, residuals, state.points, &map, &report);
   report.ok = true;
   return report;
+}
+
+void BindConfigKeys(const std::string& prefix, BundleAdjustmentOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled, "local bundle adjustment at each keyframe");
+  r->Bind(prefix + ".window_keyframes", &o->window_keyframes, "recent keyframes optimised; older covisible ones fixed");
+  r->Bind(prefix + ".virtual_baseline_m", &o->virtual_baseline_m,
+          "stereo baseline that weighs the depth residual of an observation (0 = reprojection only)");
 }
 
 }  // namespace dynvo

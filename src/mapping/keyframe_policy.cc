@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -11,11 +12,11 @@ constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 }  // namespace
 
 void KeyframeOptions::Check() const {
-  RequireOption(max_frames_between >= 1, "keyframes", "max_frames_between", ">= 1", max_frames_between);
+  RequireOption(max_frames_between >= 1, "tracking.keyframes", "max_frames_between", ">= 1", max_frames_between);
   RequireOption(min_tracked_ratio >= 0.0 && min_tracked_ratio <= 1.0,
-                "keyframes", "min_tracked_ratio", "in [0, 1]", min_tracked_ratio);
-  RequireOption(min_translation_m > 0.0, "keyframes", "min_translation_m", "> 0", min_translation_m);
-  RequireOption(min_rotation_deg > 0.0, "keyframes", "min_rotation_deg", "> 0", min_rotation_deg);
+                "tracking.keyframes", "min_tracked_ratio", "in [0, 1]", min_tracked_ratio);
+  RequireOption(min_translation_m > 0.0, "tracking.keyframes", "min_translation_m", "> 0", min_translation_m);
+  RequireOption(min_rotation_deg > 0.0, "tracking.keyframes", "min_rotation_deg", "> 0", min_rotation_deg);
 }
 
 KeyframeDecision DecideKeyframe(const KeyframeOptions& options, int frames_since_keyframe,
@@ -38,6 +39,12 @@ KeyframeDecision DecideKeyframe(const KeyframeOptions& options, int frames_since
   }
   decision.insert = !decision.reason.empty();
   return decision;
+}
+
+void BindConfigKeys(const std::string& prefix, KeyframeOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".max_frames_between", &o->max_frames_between, "a keyframe at least this often");
+  r->Bind(prefix + ".min_tracked_ratio", &o->min_tracked_ratio,
+          "keyframe when tracked points fall below this share of the reference keyframe's");
 }
 
 }  // namespace dynvo

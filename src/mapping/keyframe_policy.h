@@ -7,14 +7,19 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct KeyframeOptions {
   int max_frames_between = 10;     // frames; a keyframe at least this often (>= 1)
   double min_tracked_ratio = 0.7;  // tracked / reference inliers below this -> keyframe, [0, 1]
   double min_translation_m = 0.05; // metres moved since the last keyframe -> keyframe (> 0)
   double min_rotation_deg = 5.0;   // degrees turned since the last keyframe -> keyframe (> 0)
-  // Throws InputError naming the key ("keyframes.max_frames_between ...") when out of range.
+  // Throws InputError naming the key ("tracking.keyframes.max_frames_between ...") when out of range.
   void Check() const;
 };
+
+// The config keys of the keyframe policy (section "tracking.keyframes"): max_frames_between, min_tracked_ratio.
+void BindConfigKeys(const std::string& prefix, KeyframeOptions* options, ConfigRegistry* registry);
 
 struct KeyframeDecision {
   bool insert = false;

@@ -5,6 +5,7 @@
 #include <string>
 #include <unordered_set>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -19,8 +20,8 @@ void CheckDescriptor(const cv::Mat& descriptor, const char* caller) {
 }  // namespace
 
 void LocalMapOptions::Check() const {
-  RequireOption(max_keyframes >= 2, "map", "max_keyframes", ">= 2", max_keyframes);
-  RequireOption(max_points >= 1, "map", "max_points", ">= 1", max_points);
+  RequireOption(max_keyframes >= 2, "tracking.map", "max_keyframes", ">= 2", max_keyframes);
+  RequireOption(max_points >= 1, "tracking.map", "max_points", ">= 1", max_points);
 }
 
 LocalMap::LocalMap(const LocalMapOptions& options) : options_(options) { options_.Check(); }
@@ -155,6 +156,11 @@ void LocalMap::RemoveUnobservedPoints() {
     else
       ++it;
   }
+}
+
+void BindConfigKeys(const std::string& prefix, LocalMapOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".max_keyframes", &o->max_keyframes, "keyframes kept in the local map");
+  r->Bind(prefix + ".max_points", &o->max_points, "map points kept at most");
 }
 
 }  // namespace dynvo

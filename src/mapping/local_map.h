@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,15 +16,20 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct LocalMapOptions {
   // 20 keyframes: a camera that swings back (rpy, halfsphere) finds the background it saw
   // before a person walked in front of it; with 8 it matched fewer points and drifted more
   // (README, Config, "Local map size").
   int max_keyframes = 20;  // keyframes kept (>= 2)
   int max_points = 8000;   // map points kept (>= 1)
-  // Throws InputError naming the key ("map.max_keyframes ...") when a value is out of range.
+  // Throws InputError naming the key ("tracking.map.max_keyframes ...") when a value is out of range.
   void Check() const;
 };
+
+// The config keys of the local map (section "tracking.map"): max_keyframes, max_points.
+void BindConfigKeys(const std::string& prefix, LocalMapOptions* options, ConfigRegistry* registry);
 
 class LocalMap {
  public:

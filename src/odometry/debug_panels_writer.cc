@@ -115,7 +115,7 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
   WriteFeatureList(dir + prefix + "features.csv", features);
   // The stages the paper does not have, outside the montage.
   const std::vector<std::pair<std::string, cv::Mat>> additions = {
-      {"background", processed.stages.features.described}, {"depth_change", mask.depth_change},
+      {"background", processed.stages.features.described}, {"depth_change", mask.change_seeds},
       {"map_occlusion", mask.map_occlusion}, {"map_occlusion_candidates", mask.map_occlusion_candidates}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);

@@ -1,9 +1,14 @@
 #pragma once
-// Every parameter of a run, grouped by stage, with defaults; the JSON config and `--set`
-// overrides write into it through the ConfigRegistry, and Check() validates it whole.
+// Every parameter of a run, grouped by stage, with defaults. Each options struct binds its own
+// config keys under its member's name (BindConfigKeys), so a key's path is the struct path:
+// `tracking.local_ba.enabled` is OdometryConfig::tracking.local_ba.enabled. The JSON config and
+// `--set` overrides write through the ConfigRegistry, and Check() validates the whole.
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/camera.h"
 #include "dataset/tum_dataset.h"
@@ -14,10 +19,11 @@
 #include "ego_motion/homography.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_options.h"
-#include "odometry/config_registry.h"
 #include "tracking/frame_tracker.h"
 
 namespace dynvo {
+
+class ConfigRegistry;
 
 // Where the intrinsics come from: "auto" (camera.json in the sequence, else the TUM camera
 // named by the folder, else the ROS default), a TUM preset, or the numbers given here.
@@ -26,12 +32,16 @@ struct CameraConfig {
   Camera custom;                // used when source == "custom"
 };
 
-// Where paper mode's dynamic mask comes from.
+// Where frame t's dynamic mask comes from (pipeline/mask_source.h).
 enum class MaskSourceKind {
+  kNone,         // no mask: the baseline, everything else identical
   kDifference,   // the paper's detector: motion-compensated frame differencing
   kGroundTruth,  // the sequence's ground-truth masks (generated sequences have them): what a
                  // perfect detector would give, to tell the mask's errors from the tracker's
 };
+
+// "none", "difference", "ground_truth".
+std::string ToString(MaskSourceKind kind);
 
 struct RunOptions {
   int max_frames = 0;   // process at most this many frames (0 = all)
@@ -39,19 +49,23 @@ struct RunOptions {
 };
 
 struct OdometryConfig {
-  TumDatasetOptions dataset;
-  CameraConfig camera;
-  KltOptions klt;
-  HomographyOptions homography;
-  bool dynamic_mask_enabled = true;  // false = the baseline: same pipeline, no dynamic handling
-  MaskSourceKind dynamic_mask_source = MaskSourceKind::kDifference;  // with dynamic_mask_enabled
-  DynamicMaskOptions dynamic_mask;
-  DepthChangeOptions depth_change;  // with dynamic_mask_enabled and the difference source
-  MapOcclusionOptions map_occlusion;  // likewise
-  DepthTrimOptions depth_trim;        // with map_occlusion
-  FeatureOptions features;
-  TrackerOptions tracker;
-  RunOptions run;
+  // The recommended config (configs/dynvo.json): the options' own defaults with the additions
+  // that hold on the benchmark's dev split switched on (configs/paper.json switches all off).
+  OdometryConfig();
+
+  TumDatasetOptions dataset;          // "dataset.*"
+  CameraConfig camera;                // "camera.*"
+  MaskSourceKind mask_source = MaskSourceKind::kDifference;  // "mask_source"
+  KltOptions klt;                     // the KLT tracks of the ego-motion (no keys)
+  HomographyOptions homography;       // "homography.*": the ego-motion homography
+  DynamicMaskOptions dynamic_mask;    // "dynamic_mask.*": the differencing source
+  // Refinements of the differencing mask (not applied to the other sources):
+  DepthChangeOptions depth_change;    // "depth_change.*"
+  MapOcclusionOptions map_occlusion;  // "map_occlusion.*"
+  DepthTrimOptions depth_trim;        // "depth_trim.*"
+  FeatureOptions features;            // "features.*"
+  TrackerOptions tracking;            // "tracking.*"
+  RunOptions run;                     // "run.*"
 
   // Throws InputError naming the first key whose value is out of range.
   void Check() const;
@@ -61,8 +75,9 @@ struct OdometryConfig {
   TumDatasetOptions ReaderOptions() const;
 };
 
-// Binds every key of `config` ("section.field") into `registry`.
-void RegisterConfigKeys(OdometryConfig* config, ConfigRegistry* registry);
+// Binds every key of `config` into `registry` (and notes the keys of older versions that moved
+// or were retired, so that a config using them gets an error that says so).
+void BindConfigKeys(OdometryConfig* config, ConfigRegistry* registry);
 
 // Defaults, then the JSON file at `path` (if not empty), then each "key=value" override in
 // order; then Check(). Throws InputError naming the file, key or override at fault.

@@ -19,8 +19,8 @@ double MsSince(Clock::time_point start) {
 }
 
 std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const ImageArea& area, Executor& executor) {
-  if (!config.dynamic_mask_enabled) return std::make_unique<NoMaskSource>();
-  if (config.dynamic_mask_source == MaskSourceKind::kGroundTruth)
+  if (config.mask_source == MaskSourceKind::kNone) return std::make_unique<NoMaskSource>();
+  if (config.mask_source == MaskSourceKind::kGroundTruth)
     return std::make_unique<TruthMaskSource>(config.klt, config.homography, config.features.refill_from_background);
   return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, area, executor);
 }
@@ -28,11 +28,9 @@ std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const I
 std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camera, const OdometryConfig& config,
                                                              Executor& executor) {
   std::vector<std::unique_ptr<MaskRefinement>> refinements;
-  if (!config.dynamic_mask_enabled) return refinements;
-  const bool differencing = config.dynamic_mask_source == MaskSourceKind::kDifference;
-  if (differencing && config.depth_change.enabled)
-    refinements.push_back(std::make_unique<DepthChangeRefinement>(camera, config.depth_change,
-                                                                  config.map_occlusion.enabled, executor));
+  if (config.mask_source != MaskSourceKind::kDifference) return refinements;  // they refine differencing
+  if (config.depth_change.enabled)
+    refinements.push_back(std::make_unique<DepthChangeRefinement>(camera, config.depth_change, executor));
   if (config.map_occlusion.enabled)
     refinements.push_back(std::make_unique<StaticMapRefinement>(camera, config.map_occlusion, config.depth_trim));
   return refinements;
@@ -47,7 +45,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
       mask_source_(MakeMaskSource(config, image_area, executor_)),
       refinements_(MakeRefinements(camera, config, executor_)),
       features_(camera, config.features, image_area, executor_),
-      tracker_(camera, config.tracker) {}
+      tracker_(camera, config.tracking) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
   const auto start = Clock::now();

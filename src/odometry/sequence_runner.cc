@@ -205,7 +205,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   Executor executor(threads - 1);  // the calling thread is the other one
   OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor);
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())
-    throw InputError("dynamic_mask.source \"ground_truth\": " + dataset.folder() +
+    throw InputError("mask_source \"ground_truth\": " + dataset.folder() +
                      " has no masks.txt; ground-truth masks come with generated sequences "
                      "(dynvo-synth, dynvo-insert-people, tools/make_sequences.sh)");
   PrepareOutputDir(request);
@@ -221,7 +221,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
 
   nlohmann::json report = RunHeader(request, config, dataset, count);
 
-  const bool evaluate_masks = dataset.has_masks() && config.dynamic_mask_enabled;
+  const bool evaluate_masks = dataset.has_masks() && config.mask_source != MaskSourceKind::kNone;
   FrameLoader loader(dataset, count, evaluate_masks, executor);
   const DebugPanelsWriter debug_panels((out / "debug").string(), debug_frames);
   TimingCsvWriter timing((out / "timing.csv").string());

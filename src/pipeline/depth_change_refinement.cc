@@ -9,8 +9,8 @@
 namespace dynvo {
 
 DepthChangeRefinement::DepthChangeRefinement(const Camera& camera, const DepthChangeOptions& options,
-                                             bool map_occlusion_on, Executor& executor)
-    : camera_(camera), options_(options), map_occlusion_on_(map_occlusion_on), executor_(executor) {}
+                                             Executor& executor)
+    : camera_(camera), options_(options), executor_(executor) {}
 
 void DepthChangeRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   if (!pending_.valid()) return;
@@ -19,13 +19,7 @@ void DepthChangeRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   if (!changed_last.empty() && mask->has_motion) {
     const cv::Mat changed = WarpBinaryMasks({changed_last}, mask->current_from_previous, frame.gray.size())[0];
     // A change over much of the image means the poses disagree, not the scene: none then.
-    if (DynamicRatio(changed) <= options_.max_share) {
-      mask->depth_change = changed;
-      if (options_.seeds_only)
-        mask->change_seeds = changed;
-      else
-        mask->Join(changed);
-    }
+    if (DynamicRatio(changed) <= options_.max_share) mask->change_seeds = changed;
   }
   mask->ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -38,10 +32,8 @@ void DepthChangeRefinement::Observe(const RgbdFrame& frame, const TrackingResult
     past_depths_.push_back({frame.depth, tracking.world_from_camera});
     if (past_depths_.size() > span) past_depths_.pop_front();
   }
-  // As seeds only, it is wanted only where the next frame gets an occlusion mask to seed.
-  if (past_depths_.size() < span ||
-      (options_.seeds_only && !(map_occlusion_on_ && MapOcclusionPossible(frame, tracking))))
-    return;
+  // Wanted only where the next frame gets an occlusion mask to seed.
+  if (past_depths_.size() < span || !MapOcclusionPossible(frame, tracking)) return;
   const PastDepth& last = past_depths_.back();
   const PastDepth& earlier = past_depths_.front();
   pending_ = executor_.Submit([this, last, earlier] {

@@ -1,9 +1,9 @@
 #pragma once
 // Depth change (dynamic_mask/depth_change.h) as a mask refinement: what moves along the line of
 // sight, found between the last frame and the one `frames` before it, whose poses are both
-// estimated, and carried into frame t by the source's homography. It joins the mask, or with
-// seeds_only it only seeds the map occlusion (static_map_refinement.h). Computed on the executor
-// while frame t's map occlusion is computed.
+// estimated, and carried into frame t by the source's homography. It does not join the mask: it
+// seeds the map occlusion (static_map_refinement.h), whose regions it touches join. Computed on
+// the executor while frame t's map occlusion is computed.
 
 #include <deque>
 
@@ -16,12 +16,10 @@ namespace dynvo {
 
 class DepthChangeRefinement : public MaskRefinement {
  public:
-  // `map_occlusion_on`: the map occlusion runs (what seeds_only seeds). `executor` must outlive it.
-  DepthChangeRefinement(const Camera& camera, const DepthChangeOptions& options, bool map_occlusion_on,
-                        Executor& executor);
+  // `executor` must outlive the refinement.
+  DepthChangeRefinement(const Camera& camera, const DepthChangeOptions& options, Executor& executor);
 
-  // Joins the carried change to the mask (at most max_share of the image), or sets it as the
-  // mask's change_seeds.
+  // Sets the carried change (unless over max_share of the image) as the mask's change_seeds.
   void Refine(const RgbdFrame& frame, MaskPacket* mask) override;
   // Keeps frame t's depth and pose; starts the change between it and the oldest one kept.
   void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) override;
@@ -33,7 +31,6 @@ class DepthChangeRefinement : public MaskRefinement {
   };
   Camera camera_;
   DepthChangeOptions options_;
-  bool map_occlusion_on_;
   Executor& executor_;
   std::deque<PastDepth> past_depths_;  // the last frames, oldest first
   Task<cv::Mat> pending_;              // the change of the last frame (declared last)

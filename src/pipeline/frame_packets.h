@@ -41,8 +41,7 @@ struct MaskPacket {
   bool refined = false;  // a refinement changed the mask (dynamic_ratio is then recomputed)
   // Intermediate images, for observers (empty when not computed):
   cv::Mat compensated, difference, forward_mask, backward_mask;  // differencing (Fig. 1 / 3)
-  cv::Mat change_seeds;   // depth change, as seeds of the map occlusion
-  cv::Mat depth_change;   // the depth change carried into frame t (joined or seeds)
+  cv::Mat change_seeds;   // the depth change carried into frame t: seeds of the map occlusion
   cv::Mat map_occlusion_candidates, map_occlusion;  // the carried map occlusion; what joined
 
   bool ok() const { return status == MaskStatus::kComputed || status == MaskStatus::kGiven; }

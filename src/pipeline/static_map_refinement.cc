@@ -23,18 +23,15 @@ void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   std::vector<cv::Mat> carried(3);  // occlusion, kept occlusion, explained (empty: not carried)
   if (carry_occlusion || carry_explained)
     carried = WarpBinaryMasks({carry_occlusion ? occlusion_ : cv::Mat(),
-                               carry_occlusion && occlusion_options_.seeded ? kept_occlusion_ : cv::Mat(),
+                               carry_occlusion ? kept_occlusion_ : cv::Mat(),
                                carry_explained ? explained_ : cv::Mat()},
                               mask->current_from_previous, frame.gray.size());
   if (carry_occlusion) {
-    cv::Mat occlusion = carried[0];
-    if (occlusion_options_.seeded) {
-      cv::Mat seeds = MaskUnion(mask->mask, mask->change_seeds);
-      if (!kept_occlusion_.empty()) seeds = MaskUnion(seeds, carried[1]);
-      mask->map_occlusion_candidates = occlusion;
-      occlusion = RegionsTouching(occlusion, seeds);  // no seeds: nothing kept
-      kept_occlusion_ = occlusion;
-    }
+    cv::Mat seeds = MaskUnion(mask->mask, mask->change_seeds);
+    if (!kept_occlusion_.empty()) seeds = MaskUnion(seeds, carried[1]);
+    mask->map_occlusion_candidates = carried[0];
+    const cv::Mat occlusion = RegionsTouching(carried[0], seeds);  // no seeds: nothing kept
+    kept_occlusion_ = occlusion;
     mask->Join(occlusion);
     mask->map_occlusion = occlusion;
   } else {

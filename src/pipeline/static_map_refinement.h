@@ -1,8 +1,9 @@
 #pragma once
 // What the static map says about the mask, as a mask refinement: the map occlusion
 // (dynamic_mask/map_occlusion.h), what frame t-1 measured in front of the static map, carried
-// into frame t by the source's homography; seeded, only its regions that touch the mask so
-// far, the depth change's seeds or a region kept the frame before join it. Then the trim
+// into frame t by the source's homography, of which only the regions that touch the mask so
+// far, the depth change's seeds (depth_change_refinement.h) or a region kept the frame before
+// join it. Then the trim
 // (dynamic_mask/depth_trim.h): each region of the mask cut to its near surface where the map
 // explains the rest, so that the background the dilations spilled over gives its features back.
 
@@ -30,7 +31,7 @@ class StaticMapRefinement : public MaskRefinement {
   MapOcclusionOptions occlusion_options_;
   DepthTrimOptions trim_options_;
   cv::Mat occlusion_;       // what frame t-1 measured in front of the static map
-  cv::Mat kept_occlusion_;  // seeded: the regions of it frame t-1 kept (seeds for frame t)
+  cv::Mat kept_occlusion_;  // the regions of it frame t-1 kept (seeds for frame t)
   cv::Mat explained_;       // trim: where frame t-1's depth is explained by the static map
 };
 

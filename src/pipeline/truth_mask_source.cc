@@ -13,7 +13,7 @@ namespace {
 void CheckTruthMask(const RgbdFrame& frame, const cv::Mat& mask) {
   const std::string where = "frame " + std::to_string(frame.index) + " (stamp " + std::to_string(frame.stamp) + "): ";
   if (mask.empty())
-    throw InputError(where + "dynamic_mask.source \"ground_truth\" needs the frame's ground-truth mask; there is none");
+    throw InputError(where + "mask_source \"ground_truth\" needs the frame's ground-truth mask; there is none");
   if (mask.type() != CV_8UC1 || mask.size() != frame.gray.size())
     throw InputError(where + "the ground-truth mask must be 8-bit 1-channel and the size of the image");
 }

@@ -10,6 +10,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 #include "pose/pose_reprojection_cost.h"
 
@@ -22,7 +23,7 @@ constexpr double kConfidence = 0.99;    // RANSAC stops early once this confiden
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  RequireOption(ok, "pose", field, rule, value);
+  RequireOption(ok, "tracking.pose", field, rule, value);
 }
 
 void CheckSizes(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,
@@ -272,6 +273,11 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
   }
   result.ok = true;
   return result;
+}
+
+void BindConfigKeys(const std::string& prefix, PoseSolverOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".seed", &o->seed, "EPnP RANSAC random seed");
+  r->Bind(prefix + ".huber_delta_px", &o->huber_delta_px, "Huber loss scale (paper eq. 5)");
 }
 
 }  // namespace dynvo

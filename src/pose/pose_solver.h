@@ -13,6 +13,8 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct PoseSolverOptions {
   double ransac_threshold_px = 4.0;   // EPnP RANSAC inlier threshold (pixels)
   int ransac_iterations = 100;        // RANSAC hypotheses (>= 1)
@@ -23,9 +25,12 @@ struct PoseSolverOptions {
   int refine_rounds = 2;              // refine, drop outliers, refine again (>= 1)
   double outlier_threshold_px = 3.0;  // residual above -> outlier after a round (pixels, > 0)
 
-  // Throws InputError naming the key "pose.<field>" when a field is out of range.
+  // Throws InputError naming the key "tracking.pose.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of the pose (section "tracking.pose"): seed, huber_delta_px.
+void BindConfigKeys(const std::string& prefix, PoseSolverOptions* options, ConfigRegistry* registry);
 
 struct PoseEstimate {
   bool ok = false;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <cmath>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -17,7 +18,7 @@ constexpr int kHistogramBins = 30;  // rotation-consistency histogram (12 degree
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
-  RequireOption(ok, "matching", field, rule, value);
+  RequireOption(ok, "tracking.matching", field, rule, value);
 }
 
 // Feature indices bucketed by undistorted pixel on a regular grid.
@@ -220,6 +221,11 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
   std::sort(matches.begin(), matches.end(),
             [](const Match& a, const Match& b) { return a.point_index < b.point_index; });
   return matches;
+}
+
+void BindConfigKeys(const std::string& prefix, MatchOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".search_radius_px", &o->search_radius_px, "search window around a map point's predicted projection");
+  r->Bind(prefix + ".ratio", &o->ratio, "best / second-best descriptor distance must be below");
 }
 
 }  // namespace dynvo

@@ -1,6 +1,7 @@
 #pragma once
 // Projection-guided matching of map points to the features of a frame (ORB-SLAM style).
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -12,15 +13,20 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct MatchOptions {
   double search_radius_px = 15.0;      // window around the predicted projection (pixels, level 0)
   int max_descriptor_distance = 64;    // largest Hamming distance accepted (bits, 0..256)
   double ratio = 0.9;                  // best / second best distance must be below this (0..1]
   bool check_orientation = true;       // rotation-consistency histogram (ORB-SLAM)
 
-  // Throws InputError naming the key "matching.<field>" when a field is out of range.
+  // Throws InputError naming the key "tracking.matching.<field>" when a field is out of range.
   void Check() const;
 };
+
+// The config keys of matching (section "tracking.matching"): search_radius_px, ratio.
+void BindConfigKeys(const std::string& prefix, MatchOptions* options, ConfigRegistry* registry);
 
 struct Match {
   int feature_index = -1;  // index into FrameFeatures

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -140,6 +141,13 @@ std::vector<uint8_t> FlagCoherentMotion(const std::vector<Eigen::Vector2d>& pixe
                    : 0;
   }
   return flags;
+}
+
+void BindConfigKeys(const std::string& prefix, CoherentMotionOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled,
+          "pose inliers that share with their neighbours (in the image and in depth) a reprojection "
+          "error departing from the frame's smooth error field leave the pose and the map: what "
+          "moves too little to be masked");
 }
 
 }  // namespace dynvo

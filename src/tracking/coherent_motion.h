@@ -6,11 +6,14 @@
 // the pose's inlier bound.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 namespace dynvo {
+
+class ConfigRegistry;
 
 struct CoherentMotionOptions {
   bool enabled = false;
@@ -23,6 +26,9 @@ struct CoherentMotionOptions {
   // Throws InputError naming the key ("tracking.coherent_motion.radius_px ...") when out of range.
   void Check() const;
 };
+
+// The config keys of the coherent-motion test (section "tracking.coherent_motion"): enabled.
+void BindConfigKeys(const std::string& prefix, CoherentMotionOptions* options, ConfigRegistry* registry);
 
 // One flag per correspondence (1 = moves with its neighbours): pixels and residuals (observed
 // minus projected, pixels) and depths (metres, > 0) of the pose's inliers. The frame's own error

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 #include "features/feature_filter.h"
 #include "tracking/new_point_confirmation.h"
@@ -491,6 +492,28 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   // frame where fewer features have depth and match than the keyframe had.
   reference_tracked_ = static_cast<int>(std::count(inliers.begin(), inliers.end(), 1));
   return refined;
+}
+
+void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry* r) {
+  BindConfigKeys(prefix + ".matching", &o->matching, r);
+  BindConfigKeys(prefix + ".pose", &o->pose, r);
+  BindConfigKeys(prefix + ".map", &o->map, r);
+  BindConfigKeys(prefix + ".keyframes", &o->keyframes, r);
+  BindConfigKeys(prefix + ".local_ba", &o->local_ba, r);
+  BindConfigKeys(prefix + ".coherent_motion", &o->coherent_motion, r);
+  r->Bind(prefix + ".min_matches", &o->min_matches, "fewer map matches: wider search, then lost");
+  r->Bind(prefix + ".max_new_points", &o->max_new_points, "new map points per keyframe at most");
+  r->Bind(prefix + ".max_ba_depth_rotation_deg_s", &o->max_ba_depth_rotation_deg_s,
+          "deg/s: a keyframe taken while the camera turns faster keeps its depths out of local BA "
+          "(unsynchronised rolling-shutter sensors misplace depth then; 0 = never)");
+  r->Bind(prefix + ".rematch_radius_px", &o->rematch_radius_px,
+          "match again this close to the first pose estimate and refine once more (0 = off)");
+  r->Bind(prefix + ".readmit_masked_px", &o->readmit_masked_px,
+          "features the dynamic mask removed rejoin the pose and the keyframe when they match the "
+          "map within this reprojection error (pixels) of the pose estimated without them; 0 = off");
+  r->Bind(prefix + ".new_point_confirmations", &o->new_point_confirmations,
+          "points a keyframe makes join the pose only after this many frames confirmed them "
+          "(seen where the pose from the trusted points projects them); 0 = off");
 }
 
 }  // namespace dynvo

@@ -23,12 +23,14 @@
 
 namespace dynvo {
 
+class ConfigRegistry;
+
 struct TrackerOptions {
-  MatchOptions matching;               // "matching.*"
-  PoseSolverOptions pose;              // "pose.*"
-  LocalMapOptions map;                 // "map.*"
-  KeyframeOptions keyframes;           // "keyframes.*"
-  BundleAdjustmentOptions local_ba;    // "local_ba.*"
+  MatchOptions matching;               // "tracking.matching.*"
+  PoseSolverOptions pose;              // "tracking.pose.*"
+  LocalMapOptions map;                 // "tracking.map.*"
+  KeyframeOptions keyframes;           // "tracking.keyframes.*"
+  BundleAdjustmentOptions local_ba;    // "tracking.local_ba.*"
   int min_matches = 20;                // map matches / pose inliers needed to track; also the
                                        // depth features needed to seed the map (>= 4)
   double wide_search_factor = 3.0;     // search radius multiplier of the EPnP retry (>= 1)
@@ -56,10 +58,13 @@ struct TrackerOptions {
                                        // centre by more than this from the pose of the trusted
                                        // points (metres, >= 0)
 
-  // Throws InputError naming the key ("tracking.min_matches ...", "pose.min_inliers ...")
+  // Throws InputError naming the key ("tracking.min_matches ...", "tracking.pose.min_inliers ...")
   // when this or any sub-option is out of range.
   void Check() const;
 };
+
+// The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes, .local_ba, .coherent_motion).
+void BindConfigKeys(const std::string& prefix, TrackerOptions* options, ConfigRegistry* registry);
 
 struct TrackingResult {
   Pose world_from_camera = Pose::Identity();  // always set (motion model when lost)

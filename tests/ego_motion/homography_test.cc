@@ -153,7 +153,7 @@ TEST(HomographyOptions, CheckNamesTheKey) {
     options.Check();
     FAIL() << "no throw";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "ego_motion.min_inliers must be >= 4, got 3");
+    EXPECT_EQ(std::string(e.what()), "homography.min_inliers must be >= 4, got 3");
   }
   options = HomographyOptions();
   options.ransac_threshold_px = 0.0;

@@ -134,7 +134,7 @@ TEST(KltOptions, CheckNamesTheKey) {
     options.Check();
     FAIL() << "no throw";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "ego_motion.window_size_px must be odd and >= 3, got 20");
+    EXPECT_EQ(std::string(e.what()), "klt.window_size_px must be odd and >= 3, got 20");
   }
   options = KltOptions();
   options.max_corners = 0;

@@ -57,7 +57,7 @@ TEST(BundleAdjustmentOptions, CheckNamesTheKey) {
     options.Check();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "local_ba.window_keyframes must be >= 1, got 0");
+    EXPECT_STREQ(e.what(), "tracking.local_ba.window_keyframes must be >= 1, got 0");
   }
   options = {};
   options.huber_delta_px = 0;

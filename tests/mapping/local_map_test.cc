@@ -26,7 +26,7 @@ TEST(LocalMapOptions, CheckNamesTheKey) {
     options.Check();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "map.max_keyframes must be >= 2, got 1");
+    EXPECT_STREQ(e.what(), "tracking.map.max_keyframes must be >= 2, got 1");
   }
   options = {};
   options.max_points = 0;

@@ -24,42 +24,77 @@ std::string LoadError(const std::string& path, const std::vector<std::string>& o
   return "";
 }
 
-TEST(OdometryConfig, PaperConfigHasThePapersParameters) {
+TEST(OdometryConfig, PaperConfigIsThePapersMethodLiterally) {
   const OdometryConfig c = LoadOdometryConfig(ConfigPath("paper.json"), {});
-  EXPECT_TRUE(c.dynamic_mask_enabled);
+  EXPECT_EQ(c.mask_source, MaskSourceKind::kDifference);
   EXPECT_EQ(c.dynamic_mask.threshold, ThresholdMethod::kOtsu);
+  EXPECT_EQ(c.dynamic_mask.min_otsu_threshold, 0);
   EXPECT_EQ(c.dynamic_mask.erode_kernel_size, 4);
   EXPECT_EQ(c.dynamic_mask.erode_iterations, 2);
   EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 16);
   EXPECT_EQ(c.dynamic_mask.dilate_iterations, 1);
-  EXPECT_NE(c.dynamic_mask.backward, BackwardMode::kNone);
+  EXPECT_EQ(c.dynamic_mask.backward, BackwardMode::kReversePair);
+  EXPECT_EQ(c.dynamic_mask.difference_level, 0);
+  // None of the additions.
+  EXPECT_FALSE(c.depth_change.enabled || c.map_occlusion.enabled || c.depth_trim.enabled);
+  EXPECT_FALSE(c.features.refill_outside_mask || c.features.refill_from_background || c.features.refill_reuse_corners);
+  EXPECT_EQ(c.tracking.readmit_masked_px, 0.0);
+  EXPECT_EQ(c.tracking.new_point_confirmations, 0);
+  EXPECT_FALSE(c.tracking.coherent_motion.enabled);
 }
 
-TEST(OdometryConfig, BaselineDiffersOnlyByTheDynamicHandling) {
+TEST(OdometryConfig, BaselineIsThePaperWithoutItsMask) {
   nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
   nlohmann::json baseline = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("baseline.json"), {}));
-  EXPECT_EQ(baseline["dynamic_mask"]["enabled"], false);
-  // The dynamic handling: the mask stage, and new map points confirmed before they are trusted.
-  EXPECT_GT(paper["tracking"]["new_point_confirmations"], 0);
-  EXPECT_EQ(baseline["tracking"]["new_point_confirmations"], 0);
-  paper["tracking"].erase("new_point_confirmations");
-  baseline["tracking"].erase("new_point_confirmations");
-  // Mask parameters are irrelevant when the stage is off; all other stages must be identical.
-  paper.erase("dynamic_mask");
-  baseline.erase("dynamic_mask");
+  EXPECT_EQ(paper["mask_source"], "difference");
+  EXPECT_EQ(baseline["mask_source"], "none");
+  // What only the mask uses is irrelevant without it; every other key must be the same.
+  for (const char* section : {"mask_source", "dynamic_mask", "depth_change", "map_occlusion", "depth_trim"}) {
+    paper.erase(section);
+    baseline.erase(section);
+  }
+  for (const char* key : {"refill_outside_mask", "refill_from_background", "refill_reuse_corners"}) {
+    paper["features"].erase(key);
+    baseline["features"].erase(key);
+  }
   EXPECT_EQ(paper, baseline) << nlohmann::json::diff(paper, baseline).dump(1);
 }
 
-TEST(OdometryConfig, OcclusionIsPaperWithTheAdditions) {
-  const nlohmann::json occlusion = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("occlusion.json"), {}));
-  const nlohmann::json paper_with_additions = OdometryConfigToJson(LoadOdometryConfig(
-      ConfigPath("paper.json"),
-      {"map_occlusion.enabled=true", "map_occlusion.grow_px=20", "map_occlusion.seeded=true",
-       "depth_change.enabled=true", "depth_change.seeds_only=true", "features.refill_outside_mask=true",
-       "features.refill_from_background=true", "depth_trim.enabled=true",
-       "tracking.coherent_motion.enabled=true", "features.refill_reuse_corners=true",
-       "dynamic_mask.difference_level=1"}));
-  EXPECT_EQ(occlusion, paper_with_additions) << nlohmann::json::diff(paper_with_additions, occlusion).dump(1);
+TEST(OdometryConfig, TheDefaultsAreTheRecommendedConfig) {
+  EXPECT_EQ(OdometryConfigToJson(LoadOdometryConfig("", {})),
+            OdometryConfigToJson(LoadOdometryConfig(ConfigPath("dynvo.json"), {})));
+  EXPECT_EQ(OdometryConfigToJson(OdometryConfig{}), OdometryConfigToJson(LoadOdometryConfig("", {})));
+  const OdometryConfig c;
+  EXPECT_TRUE(c.depth_change.enabled && c.map_occlusion.enabled && c.depth_trim.enabled);
+  EXPECT_GT(c.tracking.new_point_confirmations, 0);
+}
+
+TEST(OdometryConfig, EveryKeyIsTheFieldsStructPath) {
+  // A key's first part names a member of OdometryConfig (or is one), so `--set` reads like code.
+  const std::vector<std::string> sections = {"dataset.", "camera.", "mask_source", "homography.", "dynamic_mask.",
+                                             "depth_change.", "map_occlusion.", "depth_trim.", "features.",
+                                             "tracking.", "run."};
+  for (const std::string& line : DescribeConfigKeys()) {
+    bool known = false;
+    for (const std::string& s : sections) known = known || line.rfind(s, 0) == 0;
+    EXPECT_TRUE(known) << line;
+  }
+  OdometryConfig c = LoadOdometryConfig("", {"tracking.local_ba.window_keyframes=3", "tracking.pose.seed=11",
+                                             "homography.seed=12", "tracking.matching.ratio=0.8"});
+  EXPECT_EQ(c.tracking.local_ba.window_keyframes, 3);
+  EXPECT_EQ(c.tracking.pose.seed, 11u);
+  EXPECT_EQ(c.homography.seed, 12u);
+  EXPECT_DOUBLE_EQ(c.tracking.matching.ratio, 0.8);
+}
+
+TEST(OdometryConfig, KeysOfEarlierVersionsSayWhatBecameOfThem) {
+  const std::string moved = LoadError("", {"local_ba.enabled=false"});
+  EXPECT_NE(moved.find("key 'local_ba.enabled' is now tracking.local_ba.enabled"), std::string::npos) << moved;
+  const std::string source = LoadError("", {"dynamic_mask.enabled=false"});
+  EXPECT_NE(source.find("is now mask_source"), std::string::npos) << source;
+  const std::string retired = LoadError("", {"run.lookahead=false"});
+  EXPECT_NE(retired.find("was retired"), std::string::npos) << retired;
+  EXPECT_NE(retired.find("--threads 1"), std::string::npos) << retired;
 }
 
 TEST(OdometryConfig, ErrorsNameFileAndKey) {
@@ -73,88 +108,40 @@ TEST(OdometryConfig, ErrorsNameFileAndKey) {
             std::string::npos);
   const std::string range = LoadError("", {"dynamic_mask.erode_iterations=-1"});
   EXPECT_NE(range.find("dynamic_mask.erode_iterations"), std::string::npos) << range;
-  const std::string coherent = LoadError("", {"tracking.coherent_motion.min_z=0"});
-  EXPECT_NE(coherent.find("tracking.coherent_motion.min_z must be > 0"), std::string::npos) << coherent;
+  const std::string window = LoadError("", {"tracking.local_ba.window_keyframes=0"});
+  EXPECT_NE(window.find("tracking.local_ba.window_keyframes must be >= 1"), std::string::npos) << window;
   const std::string features = LoadError("", {"features.num_features=0"});
   EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
   EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"),
             std::string::npos);
-  const std::string source = LoadError("", {"dynamic_mask.source=oracle"});
-  EXPECT_NE(source.find("dynamic_mask.source"), std::string::npos) << source;
+  const std::string source = LoadError("", {"mask_source=oracle"});
+  EXPECT_NE(source.find("mask_source"), std::string::npos) << source;
   EXPECT_NE(source.find("ground_truth"), std::string::npos) << source;
 }
 
 TEST(OdometryConfig, OverridesWinOverTheFile) {
   const OdometryConfig c = LoadOdometryConfig(
       ConfigPath("paper.json"), {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
-                                 "camera.source=fr1", "dynamic_mask.source=ground_truth"});
-  EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).dynamic_mask_source, MaskSourceKind::kDifference);
-  EXPECT_EQ(c.dynamic_mask_source, MaskSourceKind::kGroundTruth);
+                                 "camera.source=fr1", "mask_source=ground_truth"});
+  EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).mask_source, MaskSourceKind::kDifference);
+  EXPECT_EQ(c.mask_source, MaskSourceKind::kGroundTruth);
   EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 9);
   EXPECT_EQ(c.dynamic_mask.backward, BackwardMode::kTriplet);
   ASSERT_TRUE(c.CameraOverride().has_value());
   EXPECT_DOUBLE_EQ(c.CameraOverride()->fx, 517.3);
 }
 
-// `enabled_key`=true is accepted with paper.json, and refused with the baseline (naming the file
-// and the key) and with the ground-truth masks: each mask addition needs the detector's mask.
-void ExpectNeedsTheDetector(const std::string& enabled_key) {
-  const std::string on = enabled_key + "=true";
-  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {on}));
-  try {
-    LoadOdometryConfig(ConfigPath("baseline.json"), {on});
-    ADD_FAILURE() << enabled_key << ": the baseline has no mask to add to";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), ConfigPath("baseline.json") + ": " + enabled_key +
-                                          " needs dynamic_mask.enabled (the baseline has no mask)");
+TEST(OdometryConfig, TheDepthChangeAndTheTrimNeedTheMapOcclusion) {
+  for (const std::string key : {"depth_change.enabled", "depth_trim.enabled"}) {
+    EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {"map_occlusion.enabled=true", key + "=true"}));
+    const std::string error = LoadError(ConfigPath("paper.json"), {key + "=true"});
+    EXPECT_EQ(error.rfind(ConfigPath("paper.json") + ": " + key + " needs map_occlusion.enabled", 0), 0u) << error;
   }
-  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"), {on, "dynamic_mask.source=ground_truth"}), InputError)
-      << enabled_key;
-}
-
-TEST(OdometryConfig, MaskAdditionsNeedTheDetector) {
-  ExpectNeedsTheDetector("depth_change.enabled");
-  ExpectNeedsTheDetector("map_occlusion.enabled");
-  EXPECT_THROW(LoadOdometryConfig("", {"depth_change.frames=11"}), InputError);
+  // With another source than differencing they are not applied, and not refused: the recommended
+  // config with the ground-truth masks or none.
+  EXPECT_NO_THROW(LoadOdometryConfig("", {"mask_source=ground_truth"}));
+  EXPECT_NO_THROW(LoadOdometryConfig("", {"mask_source=none"}));
   EXPECT_THROW(LoadOdometryConfig("", {"map_occlusion.grow_px=65"}), InputError);
-}
-
-TEST(OdometryConfig, DepthTrimNeedsTheMapOcclusion) {
-  EXPECT_NO_THROW(
-      LoadOdometryConfig(ConfigPath("paper.json"), {"map_occlusion.enabled=true", "depth_trim.enabled=true"}));
-  try {
-    LoadOdometryConfig(ConfigPath("paper.json"), {"depth_trim.enabled=true"});
-    ADD_FAILURE() << "without the map occlusion nothing says what the map explains";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              ConfigPath("paper.json") +
-                  ": depth_trim.enabled needs map_occlusion.enabled (only what the static map explains is trimmed)");
-  }
-  EXPECT_THROW(LoadOdometryConfig(ConfigPath("baseline.json"), {"depth_trim.enabled=true"}), InputError);
-  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_gap=-0.1"}), InputError);
-  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_region_px=0"}), InputError);
-  EXPECT_THROW(LoadOdometryConfig("", {"depth_trim.min_explained=1.5"}), InputError);
-}
-
-TEST(OdometryConfig, DepthChangeSeedsNeedTheSeededMapOcclusion) {
-  const std::vector<std::string> seeded = {"map_occlusion.enabled=true", "map_occlusion.seeded=true"};
-  const std::vector<std::string> change_seeds = {"depth_change.enabled=true", "depth_change.seeds_only=true"};
-  std::vector<std::string> both = seeded;
-  both.insert(both.end(), change_seeds.begin(), change_seeds.end());
-  EXPECT_NO_THROW(LoadOdometryConfig(ConfigPath("paper.json"), both));
-  try {
-    LoadOdometryConfig(ConfigPath("paper.json"), change_seeds);
-    ADD_FAILURE() << "without the seeded map occlusion there is nothing to seed";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              ConfigPath("paper.json") +
-                  ": depth_change.seeds_only needs depth_change.enabled, map_occlusion.enabled and "
-                  "map_occlusion.seeded (it only seeds the seeded map occlusion)");
-  }
-  // The depth change itself off: no seeds to give.
-  std::vector<std::string> without_change = seeded;
-  without_change.push_back("depth_change.seeds_only=true");
-  EXPECT_THROW(LoadOdometryConfig(ConfigPath("paper.json"), without_change), InputError);
 }
 
 TEST(OdometryConfig, ReaderOptionsCarryTheDatasetKeysAndTheCamera) {

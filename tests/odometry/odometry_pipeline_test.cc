@@ -37,10 +37,9 @@ RgbdFrame TexturedFrame() {
   return frame;
 }
 
+// configs/paper.json (no refill unless a test turns it on) with the ground-truth masks.
 OdometryConfig TruthMaskConfig() {
-  OdometryConfig config;
-  config.dynamic_mask_source = MaskSourceKind::kGroundTruth;
-  return config;
+  return LoadOdometryConfig(std::string(DYNVO_SOURCE_DIR) + "/configs/paper.json", {"mask_source=ground_truth"});
 }
 
 std::string ProcessError(OdometryPipeline& pipeline, const RgbdFrame& frame, const cv::Mat& mask) {

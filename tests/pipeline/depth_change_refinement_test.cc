@@ -1,6 +1,6 @@
-// The depth-change refinement: a block that comes 20 cm closer between two tracked frames joins
-// the next frame's mask (carried by its homography), or with seeds_only only seeds the map
-// occlusion, and is not computed when there is no map occlusion to seed.
+// The depth-change refinement: a block that comes 20 cm closer between two tracked frames seeds
+// the next frame's map occlusion where that frame's homography carries it, and leaves the mask
+// alone; after a lost frame nothing is computed.
 
 #include <gtest/gtest.h>
 
@@ -19,9 +19,10 @@ RgbdFrame DepthFrame(size_t index, bool block_closer) {
   return frame;
 }
 
-// Observes frames 0 (block at 2 m) and 1 (block at 1.8 m), both tracked at the identity, then
-// refines frame 2's mask, whose homography from frame 1 is a shift of 10 px right.
-MaskPacket RefineAfterTwoFrames(const DepthChangeOptions& options, bool map_occlusion_on) {
+// Observes frames 0 (block at 2 m) and 1 (block at 1.8 m), both at the identity, frame 1 in
+// `second_state`, then refines frame 2's mask, whose homography from frame 1 is a shift of 10 px
+// right.
+MaskPacket RefineAfterTwoFrames(TrackingState second_state) {
   Executor executor(1);
   Camera camera;
   camera.width = 640;
@@ -29,11 +30,15 @@ MaskPacket RefineAfterTwoFrames(const DepthChangeOptions& options, bool map_occl
   camera.fx = camera.fy = 525.0;
   camera.cx = 319.5;
   camera.cy = 239.5;
-  DepthChangeRefinement refinement(camera, options, map_occlusion_on, executor);
+  DepthChangeOptions options;
+  options.enabled = true;
+  options.frames = 1;
+  DepthChangeRefinement refinement(camera, options, executor);
   TrackingResult tracked;
   tracked.state = TrackingState::kTracking;
   const LocalMap map(LocalMapOptions{});
   refinement.Observe(DepthFrame(0, false), tracked, map);
+  tracked.state = second_state;
   refinement.Observe(DepthFrame(1, true), tracked, map);
   MaskPacket mask;
   mask.status = MaskStatus::kComputed;
@@ -44,32 +49,19 @@ MaskPacket RefineAfterTwoFrames(const DepthChangeOptions& options, bool map_occl
   return mask;
 }
 
-TEST(DepthChangeRefinement, TheChangeJoinsTheNextMaskWhereTheHomographyCarriesIt) {
-  DepthChangeOptions options;
-  options.enabled = true;
-  options.frames = 1;
-  const MaskPacket mask = RefineAfterTwoFrames(options, false);
-  ASSERT_FALSE(mask.depth_change.empty());
-  EXPECT_TRUE(mask.refined);
+TEST(DepthChangeRefinement, TheChangeSeedsTheNextFrameWhereItsHomographyCarriesIt) {
+  const MaskPacket mask = RefineAfterTwoFrames(TrackingState::kTracking);
+  ASSERT_FALSE(mask.change_seeds.empty());
   // The block, 80 x 80 at (300, 200) in frame 1, is at (310, 200) in frame 2.
-  EXPECT_GT(cv::countNonZero(mask.mask(cv::Rect(315, 205, 70, 70))), 0.95 * 70 * 70);
-  EXPECT_LT(cv::countNonZero(mask.mask), 1.1 * 80 * 80);
-  EXPECT_TRUE(mask.change_seeds.empty());
+  EXPECT_GT(cv::countNonZero(mask.change_seeds(cv::Rect(315, 205, 70, 70))), 0.95 * 70 * 70);
+  EXPECT_LT(cv::countNonZero(mask.change_seeds), 1.1 * 80 * 80);
+  EXPECT_EQ(cv::countNonZero(mask.mask), 0);  // seeds only: the mask is the map occlusion's to change
+  EXPECT_FALSE(mask.refined);
 }
 
-TEST(DepthChangeRefinement, AsSeedsOnlyItLeavesTheMaskAndNeedsTheMapOcclusion) {
-  DepthChangeOptions options;
-  options.enabled = true;
-  options.frames = 1;
-  options.seeds_only = true;
-  const MaskPacket seeded = RefineAfterTwoFrames(options, true);
-  EXPECT_EQ(cv::countNonZero(seeded.mask), 0);
-  EXPECT_FALSE(seeded.refined);
-  ASSERT_FALSE(seeded.change_seeds.empty());
-  EXPECT_GT(cv::countNonZero(seeded.change_seeds(cv::Rect(315, 205, 70, 70))), 0.95 * 70 * 70);
-  const MaskPacket unseeded = RefineAfterTwoFrames(options, false);  // nothing to seed: not computed
-  EXPECT_TRUE(unseeded.change_seeds.empty());
-  EXPECT_TRUE(unseeded.depth_change.empty());
+TEST(DepthChangeRefinement, NothingAfterALostFrame) {
+  // A lost frame's pose is only the motion model's: no change is computed against it.
+  EXPECT_TRUE(RefineAfterTwoFrames(TrackingState::kLost).change_seeds.empty());
 }
 
 }  // namespace

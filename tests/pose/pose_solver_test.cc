@@ -135,7 +135,7 @@ TEST(PoseSolver, OptionsCheckNamesTheKey) {
     o.Check();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "pose.min_inliers must be >= 4, got 3");
+    EXPECT_STREQ(e.what(), "tracking.pose.min_inliers must be >= 4, got 3");
   }
   o = PoseSolverOptions{};
   o.huber_delta_px = 0.0;

@@ -26,6 +26,10 @@ class ConfigRegistry {
                   std::function<std::string()> get, std::function<void(const std::string&)> set,
                   const std::string& help);
 
+  // A key that is no longer bound: applying it fails with "key 'OLD_KEY' " + `note` (e.g. "is
+  // now 'a.b'", "was retired: ...") instead of "unknown key".
+  void NoteMoved(const std::string& old_key, const std::string& note);
+
   // Applies every leaf of a JSON object (nested objects form dotted keys; keys starting with
   // '_' are comments and skipped). Throws InputError
   // "<source>: unknown key 'a.b'" or "<source>: key 'a.b' expects <type>, got <value>".
@@ -51,6 +55,7 @@ class ConfigRegistry {
   void ApplyValue(const std::string& key, const nlohmann::json& value, const std::string& source);
 
   std::map<std::string, Entry> entries_;
+  std::map<std::string, std::string> moved_;  // old key -> what became of it
 };
 
 }  // namespace dynvo

@@ -1,4 +1,4 @@
-#include "odometry/config_registry.h"
+#include "core/config_registry.h"
 
 #include <cmath>
 #include <limits>
@@ -98,10 +98,16 @@ void ConfigRegistry::BindChoice(const std::string& key, std::vector<std::string>
             }});
 }
 
+void ConfigRegistry::NoteMoved(const std::string& old_key, const std::string& note) {
+  moved_[old_key] = note;
+}
+
 void ConfigRegistry::ApplyValue(const std::string& key, const nlohmann::json& value,
                                 const std::string& source) {
   const auto it = entries_.find(key);
   if (it == entries_.end()) {
+    const auto moved = moved_.find(key);
+    if (moved != moved_.end()) throw InputError(source + ": key '" + key + "' " + moved->second);
     // Suggest the keys of the same section, which is where typos usually are.
     std::string hint;
     const std::string section = key.substr(0, key.find('.'));

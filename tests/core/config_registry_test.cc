@@ -1,4 +1,4 @@
-#include "odometry/config_registry.h"
+#include "core/config_registry.h"
 
 #include <gtest/gtest.h>
 
