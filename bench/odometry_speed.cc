@@ -126,159 +126,164 @@ void ResizeFrame(dynvo::RgbdFrame& frame, const dynvo::Camera& camera) {
   frame.depth = depth;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"odometry_speed: dynvo per-frame cost against OpenCV RgbdOdometry and ICPOdometry"};
+struct SpeedArgs {
   std::string dataset_dir, config_path, trajectories_out, json_out;
   std::vector<std::string> overrides;
   int runs = 3, max_frames = 0, threads = dynvo::Executor::DefaultThreads();
   double scale = 1.0;
   bool no_peers = false;
-  app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
-  app.add_option("--config", config_path, "dynvo config (default: built-in = paper)");
-  app.add_option("--set", overrides, "config override key=value (repeatable)");
-  app.add_option("--runs", runs, "repetitions of each method (median over runs)")->check(CLI::Range(1, 100));
-  app.add_option("--frames", max_frames, "use at most this many frames (0 = all)");
-  app.add_option("--scale", scale,
+};
+
+// One run of dynvo over the frames: its times and trajectory, per-stage times and counts.
+struct DynvoRun {
+  std::vector<double> times;
+  dynvo::Trajectory trajectory;
+  std::map<std::string, std::vector<double>> stages;
+  std::vector<double> features_total, features_removed, dynamic_ratio, inliers;
+  int lost_frames = 0;
+};
+
+DynvoRun RunDynvo(const std::vector<dynvo::RgbdFrame>& frames, const dynvo::Camera& camera,
+                  const dynvo::OdometryConfig& config, const dynvo::ImageArea& area, dynvo::Executor* executor) {
+  dynvo::OdometryPipeline pipeline(camera, config, area, executor);
+  DynvoRun run;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const dynvo::FrameRecord rec = pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr).record;
+    run.times.push_back(rec.times.processing_ms);
+    run.trajectory.push_back({rec.stamp, rec.world_from_camera});
+    run.stages["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
+    run.stages["features"].push_back(rec.times.features_ms);
+    run.stages["filter"].push_back(rec.times.filter_ms);
+    run.stages["match"].push_back(rec.times.match_ms);
+    run.stages["pose"].push_back(rec.times.pose_ms);
+    run.stages["map"].push_back(rec.times.map_ms);
+    run.stages["local_ba"].push_back(rec.times.local_ba_ms);
+    run.features_total.push_back(rec.features_total);
+    run.features_removed.push_back(rec.features_removed);
+    run.dynamic_ratio.push_back(rec.dynamic_ratio);
+    run.inliers.push_back(rec.num_inliers);
+    if (rec.state == dynvo::TrackingState::kLost) ++run.lost_frames;
+  }
+  return run;
+}
+
+// Prints each method's line and adds it to the report; writes the trajectories when asked.
+void ReportMethods(const std::vector<MethodResult>& results, const MethodResult& rgbd, const SpeedArgs& args,
+                   nlohmann::json* report) {
+  // Ratio to RgbdOdometry: median over runs of the run's ratio (0 = not measured).
+  const double reference = args.no_peers ? 0.0 : Median(rgbd.run_medians);
+  std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms", "ratio_to_rgbd_odo");
+  for (const MethodResult& m : results) {
+    std::vector<double> sorted = m.last_run;
+    std::sort(sorted.begin(), sorted.end());
+    const double p90 = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
+    const double median = Median(m.run_medians);
+    std::vector<double> ratios;
+    for (size_t r = 0; r < rgbd.run_medians.size() && r < m.run_medians.size(); ++r)
+      ratios.push_back(m.run_medians[r] / rgbd.run_medians[r]);
+    const double ratio = reference > 0 ? Median(ratios) : 0.0;
+    std::printf("%-22s %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90,
+                reference > 0 ? cv::format("%.2f", ratio).c_str() : "-");
+    (*report)["methods"][m.name] = {
+        {"median_ms", median}, {"mean_ms", Mean(m.last_run)}, {"p90_ms", p90}, {"run_medians_ms", m.run_medians}};
+    if (reference > 0) {
+      (*report)["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
+      (*report)["methods"][m.name]["run_ratios_to_rgbd_odometry"] = ratios;
+    }
+    if (!args.trajectories_out.empty()) {
+      std::filesystem::create_directories(args.trajectories_out);
+      dynvo::WriteTrajectory(args.trajectories_out + "/" + m.name + ".txt", m.trajectory);
+    }
+  }
+}
+
+// Prints dynvo's counts and per-stage split of its last run and adds them to the report.
+void ReportLastRun(const DynvoRun& last, nlohmann::json* report) {
+  (*report)["dynvo_last_run"] = {{"features_total_mean", Mean(last.features_total)},
+                                 {"features_removed_mean", Mean(last.features_removed)},
+                                 {"dynamic_ratio_mean", Mean(last.dynamic_ratio)},
+                                 {"pose_inliers_mean", Mean(last.inliers)},
+                                 {"lost_frames", last.lost_frames}};
+  std::printf("\ndynvo (last run): %.0f features per frame, %.1f removed, dynamic pixels %.2f%%, "
+              "%.0f pose inliers, %d frames lost\n",
+              Mean(last.features_total), Mean(last.features_removed), 100.0 * Mean(last.dynamic_ratio),
+              Mean(last.inliers), last.lost_frames);
+  std::printf("dynvo per-stage split (last run): median_ms mean_ms\n");
+  for (const auto& [stage, values] : last.stages) {
+    std::printf("  %-14s %8.3f %8.3f\n", stage.c_str(), Median(values), Mean(values));
+    (*report)["stages"][stage] = {{"median_ms", Median(values)}, {"mean_ms", Mean(values)}};
+  }
+}
+
+// Times dynvo and (unless no_peers) the OpenCV peers over `runs` interleaved runs and reports.
+int MeasureSpeed(const SpeedArgs& args) {
+  const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(args.config_path, args.overrides);
+  const dynvo::TumDataset dataset(args.dataset_dir, config.ReaderOptions());
+  size_t count = dataset.size();
+  if (args.max_frames > 0) count = std::min(count, static_cast<size_t>(args.max_frames));
+  const dynvo::Camera camera = ScaledCamera(dataset.camera(), args.scale);
+  const dynvo::ImageArea area = ScaledArea(dataset.image_area(), dataset.camera(), camera);
+  std::vector<dynvo::RgbdFrame> frames;
+  for (size_t i = 0; i < count; ++i) {
+    frames.push_back(dataset.Load(i));
+    ResizeFrame(frames.back(), camera);
+  }
+  std::fprintf(stderr, "odometry_speed: %zu frames of %s (%dx%d) in memory, %d runs each\n", frames.size(),
+               dataset.name().c_str(), camera.width, camera.height, args.runs);
+  // Each run of dynvo is followed by one run of each peer on the same frames, so that the
+  // ratio of a run compares methods timed within seconds of each other on this shared machine.
+  MethodResult ours{"dynvo", {}, {}, {}};
+  MethodResult rgbd{"opencv_rgbd_odometry", {}, {}, {}}, icp{"opencv_icp_odometry", {}, {}, {}};
+  cv::Mat k32;
+  camera.K().convertTo(k32, CV_32F);
+  const cv::Ptr<cv::rgbd::Odometry> rgbd_odometry = cv::rgbd::RgbdOdometry::create(k32);
+  const cv::Ptr<cv::rgbd::Odometry> icp_odometry = cv::rgbd::ICPOdometry::create(k32);
+  dynvo::Executor executor(args.threads - 1);  // the calling thread is the other one, as in dynvo-cli run
+  DynvoRun last;
+  for (int r = 0; r < args.runs; ++r) {
+    last = RunDynvo(frames, camera, config, area, &executor);
+    AppendRun(&ours, MethodResult{"dynvo", {Median(last.times)}, last.times, last.trajectory});
+    if (args.no_peers) continue;
+    AppendRun(&rgbd, RunPeer(rgbd.name, rgbd_odometry, frames, 1));
+    AppendRun(&icp, RunPeer(icp.name, icp_odometry, frames, 1));
+  }
+  nlohmann::json report = {{"dataset", dataset.name()}, {"frames", frames.size()}, {"runs", args.runs},
+                           {"config", args.config_path.empty() ? "defaults" : args.config_path},
+                           {"overrides", args.overrides}, {"threads", args.threads}, {"scale", args.scale},
+                           {"width", camera.width}, {"height", camera.height},
+                           {"features", {{"num_features", config.features.num_features}}}};
+  std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
+              frames.size(), dataset.name().c_str(), camera.width, camera.height, args.runs);
+  std::vector<MethodResult> results = {ours};
+  if (!args.no_peers) results.insert(results.end(), {rgbd, icp});
+  ReportMethods(results, rgbd, args, &report);
+  ReportLastRun(last, &report);
+  if (!args.json_out.empty()) std::ofstream(args.json_out) << report.dump(2) << '\n';
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"odometry_speed: dynvo per-frame cost against OpenCV RgbdOdometry and ICPOdometry"};
+  SpeedArgs args;
+  app.add_option("--dataset", args.dataset_dir, "TUM sequence folder")->required();
+  app.add_option("--config", args.config_path, "dynvo config (default: the built-in recommended config)");
+  app.add_option("--set", args.overrides, "config override key=value (repeatable)");
+  app.add_option("--runs", args.runs, "repetitions of each method (median over runs)")->check(CLI::Range(1, 100));
+  app.add_option("--frames", args.max_frames, "use at most this many frames (0 = all)");
+  app.add_option("--scale", args.scale,
                  "resize the frames by this factor (depth nearest-neighbour) and scale the "
                  "intrinsics: 0.5 gives 320x240 from 640x480, 2 gives 1280x960")
       ->check(CLI::Range(0.1, 4.0));
-  app.add_option("--threads", threads, "threads dynvo uses (default: the machine's cores, as dynvo-cli run)")
+  app.add_option("--threads", args.threads, "threads dynvo uses (default: the machine's cores, as dynvo-cli run)")
       ->check(CLI::PositiveNumber);
-  app.add_flag("--no-peers", no_peers, "time dynvo only, not the OpenCV odometries");
-  app.add_option("--trajectories-out", trajectories_out, "write each method's trajectory here");
-  app.add_option("--json", json_out, "write the figures as JSON to this file");
+  app.add_flag("--no-peers", args.no_peers, "time dynvo only, not the OpenCV odometries");
+  app.add_option("--trajectories-out", args.trajectories_out, "write each method's trajectory here");
+  app.add_option("--json", args.json_out, "write the figures as JSON to this file");
   CLI11_PARSE(app, argc, argv);
-
   try {
-    const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
-    const dynvo::TumDataset dataset(dataset_dir, config.ReaderOptions());
-    size_t count = dataset.size();
-    if (max_frames > 0) count = std::min(count, static_cast<size_t>(max_frames));
-    std::vector<dynvo::RgbdFrame> frames;
-    const dynvo::Camera camera = ScaledCamera(dataset.camera(), scale);
-    const dynvo::ImageArea area = ScaledArea(dataset.image_area(), dataset.camera(), camera);
-    for (size_t i = 0; i < count; ++i) {
-      frames.push_back(dataset.Load(i));
-      ResizeFrame(frames.back(), camera);
-    }
-    std::fprintf(stderr, "odometry_speed: %zu frames of %s (%dx%d) in memory, %d runs each\n",
-                 frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
-
-    // Each run of dynvo is followed by one run of each peer on the same frames, so that the
-    // ratio of a run compares methods timed within seconds of each other on this shared machine.
-    MethodResult ours{"dynvo", {}, {}, {}};
-    MethodResult rgbd{"opencv_rgbd_odometry", {}, {}, {}}, icp{"opencv_icp_odometry", {}, {}, {}};
-    cv::Ptr<cv::rgbd::Odometry> rgbd_odometry, icp_odometry;
-    if (!no_peers) {
-      cv::Mat K32;
-      camera.K().convertTo(K32, CV_32F);
-      rgbd_odometry = cv::rgbd::RgbdOdometry::create(K32);
-      icp_odometry = cv::rgbd::ICPOdometry::create(K32);
-    }
-    std::map<std::string, std::vector<double>> stage_last;
-    std::vector<double> features_total, features_removed, dynamic_ratio, inliers;  // of the last run
-    int lost_frames = 0;                                                     // of the last run
-    dynvo::Executor executor(threads - 1);  // the calling thread is the other one, as in dynvo-cli run
-    for (int r = 0; r < runs; ++r) {
-      dynvo::OdometryPipeline pipeline(camera, config, area, &executor);
-      std::vector<double> times;
-      dynvo::Trajectory trajectory;
-      stage_last.clear();
-      features_total.clear();
-      features_removed.clear();
-      dynamic_ratio.clear();
-      inliers.clear();
-      lost_frames = 0;
-      for (size_t i = 0; i < frames.size(); ++i) {
-        const dynvo::FrameRecord rec =
-            pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr).record;
-        times.push_back(rec.times.processing_ms);
-        trajectory.push_back({rec.stamp, rec.world_from_camera});
-        stage_last["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
-        stage_last["features"].push_back(rec.times.features_ms);
-        stage_last["filter"].push_back(rec.times.filter_ms);
-        stage_last["match"].push_back(rec.times.match_ms);
-        stage_last["pose"].push_back(rec.times.pose_ms);
-        stage_last["map"].push_back(rec.times.map_ms);
-        stage_last["local_ba"].push_back(rec.times.local_ba_ms);
-        features_total.push_back(rec.features_total);
-        features_removed.push_back(rec.features_removed);
-        dynamic_ratio.push_back(rec.dynamic_ratio);
-        inliers.push_back(rec.num_inliers);
-        if (rec.state == dynvo::TrackingState::kLost) ++lost_frames;
-      }
-      ours.run_medians.push_back(Median(times));
-      ours.last_run = times;
-      ours.trajectory = trajectory;
-      if (!no_peers) {
-        AppendRun(&rgbd, RunPeer(rgbd.name, rgbd_odometry, frames, 1));
-        AppendRun(&icp, RunPeer(icp.name, icp_odometry, frames, 1));
-      }
-    }
-
-    std::vector<MethodResult> results = {ours};
-    if (!no_peers) {
-      results.push_back(rgbd);
-      results.push_back(icp);
-    }
-    // Ratio to RgbdOdometry: median over runs of the run's ratio (0 = not measured).
-    const double reference = no_peers ? 0.0 : Median(rgbd.run_medians);
-
-    nlohmann::json report;
-    report["dataset"] = dataset.name();
-    report["frames"] = frames.size();
-    report["runs"] = runs;
-    report["config"] = config_path.empty() ? "defaults" : config_path;
-    report["overrides"] = overrides;
-    report["threads"] = threads;
-    report["scale"] = scale;
-    report["width"] = camera.width;
-    report["height"] = camera.height;
-    report["features"] = {{"num_features", config.features.num_features}};
-    report["dynvo_last_run"] = {{"features_total_mean", Mean(features_total)},
-                                {"features_removed_mean", Mean(features_removed)},
-                                {"dynamic_ratio_mean", Mean(dynamic_ratio)},
-                                {"pose_inliers_mean", Mean(inliers)},
-                                {"lost_frames", lost_frames}};
-    std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
-                frames.size(), dataset.name().c_str(), camera.width, camera.height, runs);
-    std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms",
-                "ratio_to_rgbd_odo");  // ratio: median over runs of the run's ratio
-    for (const MethodResult& m : results) {
-      std::vector<double> sorted = m.last_run;
-      std::sort(sorted.begin(), sorted.end());
-      const double p90 = sorted.empty() ? 0 : sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
-      const double median = Median(m.run_medians);
-      std::vector<double> ratios;
-      for (size_t r = 0; r < rgbd.run_medians.size() && r < m.run_medians.size(); ++r)
-        ratios.push_back(m.run_medians[r] / rgbd.run_medians[r]);
-      const double ratio = reference > 0 ? Median(ratios) : 0.0;
-      std::printf("%-22s %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90,
-                  reference > 0 ? cv::format("%.2f", ratio).c_str() : "-");
-      report["methods"][m.name] = {{"median_ms", median}, {"mean_ms", Mean(m.last_run)},
-                                   {"p90_ms", p90}, {"run_medians_ms", m.run_medians}};
-      if (reference > 0) {
-        report["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
-        report["methods"][m.name]["run_ratios_to_rgbd_odometry"] = ratios;
-      }
-      if (!trajectories_out.empty()) {
-        std::filesystem::create_directories(trajectories_out);
-        dynvo::WriteTrajectory(trajectories_out + "/" + m.name + ".txt", m.trajectory);
-      }
-    }
-    std::printf("\ndynvo (last run): %.0f features per frame, %.1f removed, dynamic pixels %.2f%%, "
-                "%.0f pose inliers, %d frames lost\n",
-                Mean(features_total), Mean(features_removed), 100.0 * Mean(dynamic_ratio),
-                Mean(inliers), lost_frames);
-    std::printf("dynvo per-stage split (last run): median_ms mean_ms\n");
-    for (const auto& [stage, values] : stage_last) {
-      std::printf("  %-14s %8.3f %8.3f\n", stage.c_str(), Median(values), Mean(values));
-      report["stages"][stage] = {{"median_ms", Median(values)}, {"mean_ms", Mean(values)}};
-    }
-    if (!json_out.empty()) std::ofstream(json_out) << report.dump(2) << '\n';
-    return 0;
+    return MeasureSpeed(args);
   } catch (const dynvo::InputError& e) {
     std::fprintf(stderr, "odometry_speed: error: %s\n", e.what());
     return 1;

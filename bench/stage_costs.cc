@@ -64,6 +64,73 @@ class StepTimes {
   std::map<std::string, std::vector<double>> times_;
 };
 
+// Times the detector's steps one by one on frames t-1 and t, then the whole detector; returns
+// the detector's result (for the steps that need its mask).
+dynvo::DynamicMaskResult TimeMaskSteps(const dynvo::RgbdFrame& previous_frame, const dynvo::RgbdFrame& frame,
+                                       const dynvo::OdometryConfig& config, const dynvo::ImageArea& area,
+                                       dynvo::FeatureExtractor& extractor, const dynvo::Camera& camera,
+                                       StepTimes& steps) {
+  const cv::Mat& previous = previous_frame.gray;
+  const cv::Mat& current = frame.gray;
+  const cv::Size size = current.size();
+  const dynvo::DynamicMaskOptions& mask_options = config.dynamic_mask;
+  const auto previous_pyramid =
+      steps.Time("klt pyramid (previous)", [&] { return dynvo::BuildTrackingPyramid(previous, config.klt); });
+  const auto current_pyramid =
+      steps.Time("klt pyramid (current)", [&] { return dynvo::BuildTrackingPyramid(current, config.klt); });
+  const auto corners = steps.Time("corners", [&] { return dynvo::DetectCorners(current_pyramid, config.klt); });
+  const auto tracks = steps.Time(
+      "klt tracks", [&] { return dynvo::TrackPoints(current_pyramid, previous_pyramid, corners, config.klt); });
+  const auto h = steps.Time("homography (RANSAC + LM)", [&] {
+    return dynvo::EstimateHomography(tracks.current, tracks.previous, config.homography);
+  });
+  if (!h.ok) return {};
+  dynvo::CompensatedImage compensated;
+  steps.Time("compensate (warp + valid)",
+             [&] { dynvo::CompensateMotion(previous, h.current_from_previous, size, &compensated, area); });
+  cv::Mat difference, binary;
+  steps.Time("absolute difference",
+             [&] { dynvo::AbsoluteDifference(current, compensated.image, compensated.valid, &difference); });
+  const int threshold = steps.Time(
+      "threshold (otsu)", [&] { return dynvo::DifferenceThreshold(difference, compensated.valid, mask_options); });
+  steps.Time("binarize", [&] { dynvo::Binarize(difference, threshold, &binary); });
+  steps.Time("erode + dilate", [&] { dynvo::CleanMask(mask_options, &binary); });
+  cv::Mat warped;
+  steps.Time("warp binary mask (reverse pair)",
+             [&] { dynvo::WarpBinaryMask(binary, h.current_from_previous.inverse(), size, &warped); });
+  steps.Time("static track flags", [&] { return dynvo::StaticPointFlags(binary, tracks.current); });
+  const auto features = steps.Time("orb features", [&] { return extractor.Extract(current, frame.depth, camera); });
+  steps.Time("split by mask", [&] { return dynvo::SplitByMask(features, binary); });
+  // The whole detector as the pipeline calls it (all rounds, on this thread).
+  dynvo::DynamicMaskInput input;
+  input.previous_gray = previous;
+  input.current_gray = current;
+  input.previous_pyramid = previous_pyramid;
+  input.current_pyramid = current_pyramid;
+  input.image_area = area;
+  return steps.Time("whole detector (rounds)", [&] {
+    return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
+  });
+}
+
+// Times the depth change of frame i against the frame depth_change.frames back, with the
+// groundtruth's relative pose where the sequence has one (the identity otherwise: the cost
+// hardly depends on it).
+void TimeDepthChange(const std::vector<dynvo::RgbdFrame>& frames, size_t i, const dynvo::TumDataset& dataset,
+                     const dynvo::DepthChangeOptions& options, StepTimes& steps) {
+  const size_t back = static_cast<size_t>(options.frames);
+  if (i < back || frames[i].depth.empty() || frames[i - back].depth.empty()) return;
+  dynvo::Pose world_from_current = dynvo::Pose::Identity(), world_from_earlier = dynvo::Pose::Identity();
+  if (dataset.has_groundtruth() &&
+      !(dynvo::InterpolatePose(dataset.groundtruth(), frames[i].stamp, 0.1, &world_from_current) &&
+        dynvo::InterpolatePose(dataset.groundtruth(), frames[i - back].stamp, 0.1, &world_from_earlier)))
+    world_from_current = world_from_earlier = dynvo::Pose::Identity();
+  steps.Time("depth change (" + std::to_string(back) + " frames back)", [&] {
+    return dynvo::DepthChangeMask(frames[i].depth, frames[i - back].depth, dataset.camera(),
+                                  world_from_earlier.inverse() * world_from_current, options);
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,89 +139,31 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   int max_frames = 60;
   app.add_option("--dataset", dataset_dir, "TUM sequence folder")->required();
-  app.add_option("--config", config_path, "dynvo config (default: built-in = paper)");
+  app.add_option("--config", config_path, "dynvo config (default: the built-in recommended config)");
   app.add_option("--set", overrides, "config override key=value (repeatable)");
   app.add_option("--frames", max_frames, "use at most this many frames")->check(CLI::Range(2, 100000));
   CLI11_PARSE(app, argc, argv);
-
   try {
     const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);
     const dynvo::TumDataset dataset(dataset_dir, config.ReaderOptions());
     const size_t count = std::min(dataset.size(), static_cast<size_t>(max_frames));
     std::vector<dynvo::RgbdFrame> frames;
     for (size_t i = 0; i < count; ++i) frames.push_back(dataset.Load(i));
-
-    const dynvo::DynamicMaskOptions& mask_options = config.dynamic_mask;
     const dynvo::ImageArea& area = dataset.image_area();
     dynvo::FeatureExtractor extractor(config.features);
     StepTimes steps;
     std::map<int, int> rounds_run;  // rounds the whole detector ran -> frame pairs
     for (size_t i = 1; i < frames.size(); ++i) {
-      const cv::Mat& previous = frames[i - 1].gray;
-      const cv::Mat& current = frames[i].gray;
-      const cv::Size size = current.size();
-      const auto previous_pyramid = steps.Time("klt pyramid (previous)",
-                                               [&] { return dynvo::BuildTrackingPyramid(previous, config.klt); });
-      const auto current_pyramid = steps.Time("klt pyramid (current)",
-                                              [&] { return dynvo::BuildTrackingPyramid(current, config.klt); });
-      const auto corners = steps.Time("corners", [&] { return dynvo::DetectCorners(current_pyramid, config.klt); });
-      const auto tracks = steps.Time(
-          "klt tracks", [&] { return dynvo::TrackPoints(current_pyramid, previous_pyramid, corners, config.klt); });
-      const auto h = steps.Time("homography (RANSAC + LM)", [&] {
-        return dynvo::EstimateHomography(tracks.current, tracks.previous, config.homography);
-      });
-      if (!h.ok) continue;
-      dynvo::CompensatedImage compensated;
-      steps.Time("compensate (warp + valid)", [&] {
-        dynvo::CompensateMotion(previous, h.current_from_previous, size, &compensated, area);
-      });
-      cv::Mat difference, binary;
-      steps.Time("absolute difference",
-                 [&] { dynvo::AbsoluteDifference(current, compensated.image, compensated.valid, &difference); });
-      const int threshold = steps.Time("threshold (otsu)", [&] {
-        return dynvo::DifferenceThreshold(difference, compensated.valid, mask_options);
-      });
-      steps.Time("binarize", [&] { dynvo::Binarize(difference, threshold, &binary); });
-      steps.Time("erode + dilate", [&] { dynvo::CleanMask(mask_options, &binary); });
-      cv::Mat warped;
-      steps.Time("warp binary mask (reverse pair)",
-                 [&] { dynvo::WarpBinaryMask(binary, h.current_from_previous.inverse(), size, &warped); });
-      steps.Time("static track flags", [&] { return dynvo::StaticPointFlags(binary, tracks.current); });
-      const auto features = steps.Time(
-          "orb features", [&] { return extractor.Extract(frames[i].gray, frames[i].depth, dataset.camera()); });
-      steps.Time("split by mask", [&] { return dynvo::SplitByMask(features, binary); });
-      // The whole detector as the pipeline calls it (its two directions on two threads, all rounds).
-      dynvo::DynamicMaskInput input;
-      input.previous_gray = previous;
-      input.current_gray = current;
-      input.previous_pyramid = previous_pyramid;
-      input.current_pyramid = current_pyramid;
-      input.image_area = area;
-      const auto mask = steps.Time("whole detector (threads, rounds)", [&] {
-        return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
-      });
-      ++rounds_run[mask.rounds_run];
+      const dynvo::DynamicMaskResult mask =
+          TimeMaskSteps(frames[i - 1], frames[i], config, area, extractor, dataset.camera(), steps);
+      if (mask.rounds_run > 0) ++rounds_run[mask.rounds_run];
       // The background fill of features.refill_from_background, on the frames the mask marks.
       if (mask.ok && cv::countNonZero(mask.mask) > 0)
         steps.Time("background fill (mask frames)", [&] {
-          return dynvo::FillMaskFromBackground(current, mask.mask, previous, mask.current_from_previous,
-                                               dynvo::kBackgroundFillMarginPx, area);
+          return dynvo::FillMaskFromBackground(frames[i].gray, mask.mask, frames[i - 1].gray,
+                                               mask.current_from_previous, dynvo::kBackgroundFillMarginPx, area);
         });
-      // Depth change against the frame depth_change.frames back, with the groundtruth's relative
-      // pose where the sequence has one (the identity otherwise: the cost hardly depends on it).
-      const size_t back = static_cast<size_t>(config.depth_change.frames);
-      if (i >= back && !frames[i].depth.empty() && !frames[i - back].depth.empty()) {
-        dynvo::Pose world_from_current = dynvo::Pose::Identity(), world_from_earlier = dynvo::Pose::Identity();
-        if (dataset.has_groundtruth() &&
-            !(dynvo::InterpolatePose(dataset.groundtruth(), frames[i].stamp, 0.1, &world_from_current) &&
-              dynvo::InterpolatePose(dataset.groundtruth(), frames[i - back].stamp, 0.1, &world_from_earlier))) {
-          world_from_current = world_from_earlier = dynvo::Pose::Identity();
-        }
-        steps.Time("depth change (" + std::to_string(back) + " frames back)", [&] {
-          return dynvo::DepthChangeMask(frames[i].depth, frames[i - back].depth, dataset.camera(),
-                                        world_from_earlier.inverse() * world_from_current, config.depth_change);
-        });
-      }
+      TimeDepthChange(frames, i, dataset, config.depth_change, steps);
     }
     std::printf("stage_costs: %zu frame pairs of %s, config %s\n", frames.size() - 1, dataset.name().c_str(),
                 config_path.empty() ? "built-in" : config_path.c_str());

@@ -127,6 +127,150 @@ const TrackingPyramid& PyramidOf(const cv::Mat& image, const TrackingPyramid& gi
   return *built;
 }
 
+// What every round of one detection works on: frame t's corners tracked into t-1 (and t+1),
+// and the images, at the differencing level, the two directions difference.
+struct DetectionSetup {
+  cv::Size size;               // of frame t
+  bool use_next = false;       // kTriplet with a next frame
+  PointTracks forward_tracks;  // previous = frame t-1 point, current = frame t point
+  PointTracks next_tracks;     // previous = frame t+1 point, current = frame t point
+  int level = 0;               // the differencing level
+  cv::Mat previous_level, current_level, next_level;
+  DynamicMaskOptions level_options;  // kernels scaled to the level
+  ImageArea area;                    // scaled to the level
+};
+
+// Step 1: corners once in frame t, tracked into t-1 (unless given) and t+1; the level images.
+DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions& klt, const DynamicMaskOptions& options,
+                                DynamicMaskResult* result) {
+  DetectionSetup s;
+  s.size = input.current_gray.size();
+  s.use_next = options.backward == BackwardMode::kTriplet && !input.next_gray.empty();
+  if (input.previous_tracks.previous.size() != input.previous_tracks.current.size())
+    throw InputError("DetectDynamicMask: previous_tracks lists differ in length");
+  const bool tracks_given = !input.previous_tracks.current.empty();
+  TrackingPyramid built_previous, built_current, built_next;
+  const TrackingPyramid& current_pyramid = PyramidOf(input.current_gray, input.current_pyramid, klt, &built_current);
+  const TrackingPyramid& previous_pyramid =
+      tracks_given ? input.previous_pyramid : PyramidOf(input.previous_gray, input.previous_pyramid, klt, &built_previous);
+  const std::vector<cv::Point2f> corners =
+      (!tracks_given || s.use_next) ? DetectCorners(current_pyramid, klt) : std::vector<cv::Point2f>();
+  s.forward_tracks =
+      tracks_given ? input.previous_tracks : TracksIntoFrameT(current_pyramid, previous_pyramid, corners, klt);
+  s.level = options.difference_level;
+  if (s.use_next) {
+    const TrackingPyramid& next_pyramid = PyramidOf(input.next_gray, input.next_pyramid, klt, &built_next);
+    s.next_tracks = TracksIntoFrameT(current_pyramid, next_pyramid, corners, klt);
+    result->next_tracks.previous = s.next_tracks.current;
+    result->next_tracks.current = s.next_tracks.previous;
+    s.next_level = LevelImage(input.next_gray, next_pyramid, s.level);
+  }
+  s.previous_level = LevelImage(input.previous_gray, previous_pyramid, s.level);
+  s.current_level = LevelImage(input.current_gray, current_pyramid, s.level);
+  s.level_options = OptionsAtLevel(options, s.level);
+  s.area = ScaleArea(input.image_area, 1.0 / static_cast<double>(1 << s.level));
+  result->num_tracks = static_cast<int>(s.forward_tracks.current.size());
+  if (options.backward == BackwardMode::kTriplet && !s.use_next) result->backward_failure = "no next frame";
+  return s;
+}
+
+// What the rounds of one detection carry from one to the next.
+struct RoundState {
+  PointTracks static_forward, static_next;  // the tracks outside the last round's mask
+  DirectionWork forward, backward;
+  // kReversePair: the reverse H of the last backward mask computed, and that mask in frame t.
+  Eigen::Matrix3d backward_previous_from_current = Eigen::Matrix3d::Identity();
+  cv::Mat backward_in_current;
+};
+
+// Step 4 of one round: the backward mask in frame t coordinates at the differencing level
+// (empty when there is none; `failure` then says why, when one was asked for).
+cv::Mat BackwardMask(int round, const HomographyEstimate& h_forward, const DetectionSetup& s,
+                     const HomographyOptions& homography, const DynamicMaskOptions& options, RoundState* state,
+                     std::string* failure) {
+  if (options.backward == BackwardMode::kReversePair) {
+    // The reverse homography of the same pair, t compensated onto t-1, the binary image mapped back into t.
+    const HomographyEstimate h_reverse =
+        EstimateHomography(state->static_forward.current, state->static_forward.previous, homography);
+    const Eigen::Matrix3d previous_from_current =
+        h_reverse.ok ? h_reverse.current_from_previous : h_forward.current_from_previous.inverse();
+    // Nearly the same reverse H as last round would give nearly the same mask: keep last round's.
+    if (round == 1 || CornerChange(previous_from_current, state->backward_previous_from_current, s.size) >=
+                          options.rounds_min_change_px) {
+      const Eigen::Matrix3d at_level = AtLevel(previous_from_current, s.level);
+      DetectDirection(s.current_level, s.previous_level, at_level, s.area, s.level_options, &state->backward);
+      WarpBinaryMask(state->backward.binary, at_level.inverse(), s.current_level.size(), &state->backward_in_current);
+      state->backward_previous_from_current = previous_from_current;
+    }
+    return state->backward_in_current;
+  }
+  if (!s.use_next) return cv::Mat();
+  const HomographyEstimate h_next =
+      EstimateHomography(state->static_next.previous, state->static_next.current, homography);
+  if (!h_next.ok) {
+    *failure = "next frame: " + h_next.failure;
+    return cv::Mat();
+  }
+  DetectDirection(s.next_level, s.current_level, AtLevel(h_next.current_from_previous, s.level), s.area,
+                  s.level_options, &state->backward);
+  return state->backward.binary;
+}
+
+enum class RoundEnd { kNext, kDone, kFailed };
+
+// Steps 1-5 of one round: H from the static tracks, both directions (the forward one on the
+// executor), the fused mask into `result`, the tracks outside it for the next round.
+RoundEnd DetectRound(int round, const DetectionSetup& s, const HomographyOptions& homography,
+                     const DynamicMaskOptions& options, Executor* executor, RoundState* state,
+                     DynamicMaskResult* result) {
+  const HomographyEstimate h_forward =
+      EstimateHomography(state->static_forward.previous, state->static_forward.current, homography);
+  if (!h_forward.ok) {
+    if (round > 1) return RoundEnd::kDone;  // keep the previous round's mask
+    result->failure = h_forward.failure;
+    return RoundEnd::kFailed;
+  }
+  // Nearly the same H would give nearly the same mask: keep the previous round's.
+  if (round > 1 && CornerChange(h_forward.current_from_previous, result->current_from_previous, s.size) <
+                       options.rounds_min_change_px)
+    return RoundEnd::kDone;
+  // The forward direction runs on the executor while this thread does the backward one; they
+  // share only read-only inputs, so the result is the same as in sequence.
+  const auto detect_forward = [&] {
+    DetectDirection(s.previous_level, s.current_level, AtLevel(h_forward.current_from_previous, s.level), s.area,
+                    s.level_options, &state->forward);
+  };
+  Task<void> forward_done;
+  if (executor != nullptr && options.backward != BackwardMode::kNone)
+    forward_done = executor->Submit(detect_forward);
+  else
+    detect_forward();
+  std::string backward_failure = result->backward_failure;
+  const cv::Mat backward_mask = BackwardMask(round, h_forward, s, homography, options, state, &backward_failure);
+  if (forward_done.valid()) forward_done.Get();
+
+  const cv::Mat fused = ToFullSize(backward_mask.empty() ? state->forward.binary : (state->forward.binary | backward_mask), s.size);
+  result->ok = true;
+  result->mask = fused;
+  result->forward_mask = ToFullSize(state->forward.binary, s.size);
+  result->backward_mask = backward_mask.empty() ? cv::Mat() : ToFullSize(backward_mask, s.size);
+  result->backward_failure = backward_failure;
+  result->compensated = state->forward.compensated.image.clone();
+  result->difference = state->forward.difference.clone();
+  result->current_from_previous = h_forward.current_from_previous;
+  result->forward_threshold = state->forward.threshold;
+  result->rounds_run = round;
+  if (round == options.rounds) return RoundEnd::kDone;
+  // Step 5: drop the tracks inside the mask's regions; an unchanged static set would repeat this round.
+  PointTracks kept_forward = StaticTracks(s.forward_tracks, fused);
+  PointTracks kept_next = StaticTracks(s.next_tracks, fused);
+  if (kept_forward.current == state->static_forward.current && kept_next.current == state->static_next.current)
+    return RoundEnd::kDone;
+  state->static_forward = std::move(kept_forward);
+  state->static_next = std::move(kept_next);
+  return RoundEnd::kNext;
+}
+
 }  // namespace
 
 DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt, const HomographyOptions& homography,
@@ -138,137 +282,21 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
   const cv::Size size = input.current_gray.size();
   CheckGray(input.current_gray, size, "current frame");
   CheckGray(input.previous_gray, size, "previous frame");
-  const bool use_next = options.backward == BackwardMode::kTriplet && !input.next_gray.empty();
-  if (use_next) CheckGray(input.next_gray, size, "next frame");
+  if (options.backward == BackwardMode::kTriplet && !input.next_gray.empty()) CheckGray(input.next_gray, size, "next frame");
 
   DynamicMaskResult result;
   result.mask = cv::Mat::zeros(size, CV_8UC1);
-
-  // Step 1: corners once in frame t, tracked into t-1 (unless given) and t+1.
-  if (input.previous_tracks.previous.size() != input.previous_tracks.current.size())
-    throw InputError("DetectDynamicMask: previous_tracks lists differ in length");
-  const bool tracks_given = !input.previous_tracks.current.empty();
-  TrackingPyramid built_previous, built_current, built_next;
-  const TrackingPyramid& current_pyramid = PyramidOf(input.current_gray, input.current_pyramid, klt, &built_current);
-  const TrackingPyramid& previous_pyramid =
-      tracks_given ? input.previous_pyramid
-                   : PyramidOf(input.previous_gray, input.previous_pyramid, klt, &built_previous);
-  const std::vector<cv::Point2f> corners =
-      (!tracks_given || use_next) ? DetectCorners(current_pyramid, klt) : std::vector<cv::Point2f>();
-  const PointTracks forward_tracks =
-      tracks_given ? input.previous_tracks : TracksIntoFrameT(current_pyramid, previous_pyramid, corners, klt);
-  PointTracks next_tracks;  // previous = frame t+1 point, current = frame t point
-  cv::Mat next_level;
-  if (use_next) {
-    const TrackingPyramid& next_pyramid = PyramidOf(input.next_gray, input.next_pyramid, klt, &built_next);
-    next_tracks = TracksIntoFrameT(current_pyramid, next_pyramid, corners, klt);
-    result.next_tracks.previous = next_tracks.current;
-    result.next_tracks.current = next_tracks.previous;
-    next_level = LevelImage(input.next_gray, next_pyramid, options.difference_level);
-  }
-  // Differencing runs on pyramid level difference_level (0 = full size, the paper).
-  const int level = options.difference_level;
-  const cv::Mat previous_level = LevelImage(input.previous_gray, previous_pyramid, level);
-  const cv::Mat current_level = LevelImage(input.current_gray, current_pyramid, level);
-  const DynamicMaskOptions level_options = OptionsAtLevel(options, level);
-  const ImageArea area = ScaleArea(input.image_area, 1.0 / static_cast<double>(1 << level));
-  result.num_tracks = static_cast<int>(forward_tracks.current.size());
-  if (options.backward == BackwardMode::kTriplet && !use_next) result.backward_failure = "no next frame";
-
-  PointTracks static_forward = forward_tracks, static_next = next_tracks;
-  DirectionWork forward, backward;
-  // kReversePair: the reverse H of the last backward mask computed, and that mask in frame t.
-  Eigen::Matrix3d backward_previous_from_current = Eigen::Matrix3d::Identity();
-  cv::Mat backward_in_current;
+  const DetectionSetup setup = PrepareDetection(input, klt, options, &result);
+  RoundState state;
+  state.static_forward = setup.forward_tracks;
+  state.static_next = setup.next_tracks;
   for (int round = 1; round <= options.rounds; ++round) {
-    // Steps 1-3 forward: H from the (static) tracks, compensate t-1 onto t, difference, binarise, clean.
-    const HomographyEstimate h_forward =
-        EstimateHomography(static_forward.previous, static_forward.current, homography);
-    if (!h_forward.ok) {
-      if (round == 1) {
-        result.failure = h_forward.failure;
-        return result;
-      }
-      break;  // keep the previous round's mask
-    }
-    // Nearly the same H would give nearly the same mask: keep the previous round's.
-    if (round > 1 && CornerChange(h_forward.current_from_previous, result.current_from_previous, size) <
-                         options.rounds_min_change_px)
-      break;
-    // The forward direction runs on the executor while this thread does the backward one; they
-    // share only read-only inputs, so the result is the same as in sequence.
-    const auto detect_forward = [&] {
-      DetectDirection(previous_level, current_level, AtLevel(h_forward.current_from_previous, level), area,
-                      level_options, &forward);
-    };
-    Task<void> forward_done;
-    if (executor != nullptr && options.backward != BackwardMode::kNone)
-      forward_done = executor->Submit(detect_forward);
-    else
-      detect_forward();
-
-    // Step 4 backward, in frame t coordinates.
-    cv::Mat backward_mask;
-    std::string backward_failure = result.backward_failure;
-    if (options.backward == BackwardMode::kReversePair) {
-      // The reverse homography of the same pair, t compensated onto t-1, the binary image mapped back into t.
-      HomographyEstimate h_reverse = EstimateHomography(static_forward.current, static_forward.previous, homography);
-      Eigen::Matrix3d previous_from_current = h_reverse.current_from_previous;
-      if (!h_reverse.ok) previous_from_current = h_forward.current_from_previous.inverse();
-      // Nearly the same reverse H as last round would give nearly the same mask: keep last round's.
-      if (round == 1 || CornerChange(previous_from_current, backward_previous_from_current, size) >=
-                            options.rounds_min_change_px) {
-        const Eigen::Matrix3d previous_from_current_level = AtLevel(previous_from_current, level);
-        DetectDirection(current_level, previous_level, previous_from_current_level, area, level_options, &backward);
-        WarpBinaryMask(backward.binary, previous_from_current_level.inverse(), current_level.size(),
-                       &backward_in_current);
-        backward_previous_from_current = previous_from_current;
-      }
-      backward_mask = backward_in_current;
-    } else if (use_next) {
-      const HomographyEstimate h_next = EstimateHomography(static_next.previous, static_next.current, homography);
-      if (h_next.ok) {
-        DetectDirection(next_level, current_level, AtLevel(h_next.current_from_previous, level), area,
-                        level_options, &backward);
-        backward_mask = backward.binary;
-      } else {
-        backward_failure = "next frame: " + h_next.failure;
-      }
-    }
-
-    if (forward_done.valid()) forward_done.Get();
-
-    // Union of the two directions, at full size.
-    cv::Mat fused;
-    if (backward_mask.empty()) {
-      fused = ToFullSize(forward.binary, size);
-    } else {
-      cv::bitwise_or(forward.binary, backward_mask, fused);
-      fused = ToFullSize(fused, size);
-    }
-
-    result.ok = true;
-    result.mask = fused;
-    result.forward_mask = ToFullSize(forward.binary, size);
-    result.backward_mask = backward_mask.empty() ? cv::Mat() : ToFullSize(backward_mask, size);
-    result.backward_failure = backward_failure;
-    result.compensated = forward.compensated.image.clone();
-    result.difference = forward.difference.clone();
-    result.current_from_previous = h_forward.current_from_previous;
-    result.forward_threshold = forward.threshold;
-    result.rounds_run = round;
-    if (round == options.rounds) break;
-
-    // Step 5: drop the tracks inside the mask's regions; an unchanged static set would repeat this round.
-    PointTracks kept_forward = StaticTracks(forward_tracks, fused);
-    PointTracks kept_next = StaticTracks(next_tracks, fused);
-    if (kept_forward.current == static_forward.current && kept_next.current == static_next.current) break;
-    static_forward = std::move(kept_forward);
-    static_next = std::move(kept_next);
+    const RoundEnd end = DetectRound(round, setup, homography, options, executor, &state, &result);
+    if (end == RoundEnd::kFailed) return result;
+    if (end == RoundEnd::kDone) break;
   }
-
   result.num_static_tracks = 0;
-  for (const cv::Point2f& p : forward_tracks.current)
+  for (const cv::Point2f& p : setup.forward_tracks.current)
     if (!InMaskRegion(result.mask, p)) ++result.num_static_tracks;
   result.dynamic_ratio = DynamicRatio(result.mask);
   return result;

@@ -4,12 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include <Eigen/Dense>
 
 #include "core/config_registry.h"
 #include "core/error.h"
+#include "estimators/ransac.h"
 
 namespace dynvo {
 namespace {
@@ -209,6 +209,54 @@ std::vector<int> AllIndices(size_t n) {
   return all;
 }
 
+// The homography as a RANSAC estimator (estimators/ransac.h), in normalised coordinates: the
+// minimal 4-point solution; no refit inside the loop (the caller refits and refines the best).
+struct NormalisedHomographyEstimator {
+  using Model = Mat3;
+  static constexpr int kMinSamples = 4;
+  std::vector<Vec2> from, to;
+
+  bool Estimate(const std::vector<int>& sample, Mat3* h) const {
+    std::array<Vec2, 4> a, b;
+    for (int k = 0; k < 4; ++k) {
+      a[k] = from[sample[k]];
+      b[k] = to[sample[k]];
+    }
+    return MinimalHomography(a, b, h);
+  }
+  void Residuals(const Mat3& h, std::vector<double>* squared) const {
+    squared->resize(from.size());
+    for (size_t i = 0; i < from.size(); ++i) (*squared)[i] = TransferErrorSq(h, from[i], to[i]);
+  }
+  bool Refit(const std::vector<int>&, Mat3*) const { return false; }
+  std::vector<int> InliersOf(const Mat3& h, double threshold) const {
+    std::vector<int> inliers;
+    for (size_t i = 0; i < from.size(); ++i)
+      if (TransferErrorSq(h, from[i], to[i]) < threshold * threshold) inliers.push_back(static_cast<int>(i));
+    return inliers;
+  }
+};
+
+// The RANSAC model re-fitted on all its inliers (algebraic; kept when it has as many), then
+// refined on the reprojection error (eq. 4). Returns the inliers of the final `*h`.
+std::vector<int> PolishOnInliers(const NormalisedHomographyEstimator& e, double threshold,
+                                 const HomographyOptions& options, Mat3* h) {
+  std::vector<int> inliers = e.InliersOf(*h, threshold);
+  Mat3 fitted;
+  if (DltNormalised(e.from, e.to, inliers, &fitted)) {
+    std::vector<int> refit_inliers = e.InliersOf(fitted, threshold);
+    if (refit_inliers.size() >= inliers.size()) {
+      *h = fitted;
+      inliers.swap(refit_inliers);
+    }
+  }
+  if (options.refine && options.refine_iterations > 0) {
+    RefineNormalised(e.from, e.to, inliers, options.refine_iterations, h);
+    inliers = e.InliersOf(*h, threshold);
+  }
+  return inliers;
+}
+
 }  // namespace
 
 void HomographyOptions::Check() const {
@@ -275,96 +323,25 @@ HomographyEstimate EstimateHomography(const std::vector<cv::Point2f>& previous, 
     estimate.failure = "too few tracks (" + std::to_string(n) + " < " + std::to_string(options.min_inliers) + ")";
     return estimate;
   }
-
   const Normalisation np = NormalisationOf(previous), nc = NormalisationOf(current);
-  const std::vector<Vec2> from = Apply(np, previous), to = Apply(nc, current);
-  // The threshold lives in current-image pixels; errors are computed in normalised units.
-  const double threshold_sq = std::pow(options.ransac_threshold_px * nc.scale, 2);
-
-  std::mt19937 rng(options.seed);
-  std::uniform_int_distribution<int> pick(0, n - 1);
-  Mat3 best = Mat3::Identity();
-  double best_score = std::numeric_limits<double>::infinity();
-  int best_count = 0;
-  bool any_model = false;
-  int needed = options.ransac_iterations;
-  for (int iteration = 0; iteration < needed && iteration < options.ransac_iterations; ++iteration) {
-    std::array<int, 4> sample{};
-    for (int k = 0; k < 4; ++k) {
-      bool repeated = true;
-      while (repeated) {
-        sample[k] = pick(rng);
-        repeated = std::find(sample.begin(), sample.begin() + k, sample[k]) != sample.begin() + k;
-      }
-    }
-    std::array<Vec2, 4> a, b;
-    for (int k = 0; k < 4; ++k) {
-      a[k] = from[sample[k]];
-      b[k] = to[sample[k]];
-    }
-    Mat3 h;
-    if (!MinimalHomography(a, b, &h)) continue;
-    any_model = true;
-    // MSAC score: truncated squared error; ties are broken by the score, not by the inlier count.
-    double score = 0.0;
-    int count = 0;
-    for (int i = 0; i < n && score < best_score; ++i) {
-      const double e = TransferErrorSq(h, from[i], to[i]);
-      if (e < threshold_sq) {
-        score += e;
-        ++count;
-      } else {
-        score += threshold_sq;
-      }
-    }
-    if (score < best_score) {
-      best_score = score;
-      best = h;
-      best_count = count;
-      const double inlier_ratio = static_cast<double>(count) / n;
-      const double all_inlier_sample = std::pow(inlier_ratio, 4);
-      if (all_inlier_sample >= 1.0 - 1e-12) {
-        needed = iteration + 1;
-      } else if (all_inlier_sample > 0.0 && options.ransac_confidence < 1.0) {
-        const double k = std::log(1.0 - options.ransac_confidence) / std::log(1.0 - all_inlier_sample);
-        needed = static_cast<int>(std::min<double>(options.ransac_iterations, std::ceil(k)));
-      }
-    }
-  }
-  if (!any_model) {
+  const NormalisedHomographyEstimator estimator{Apply(np, previous), Apply(nc, current)};
+  RansacOptions ransac;
+  ransac.max_error = options.ransac_threshold_px * nc.scale;  // errors are in normalised units
+  ransac.confidence = options.ransac_confidence;
+  ransac.max_iterations = options.ransac_iterations;
+  ransac.seed = options.seed;
+  const RansacResult<Mat3> found = RunRansac(estimator, n, ransac);
+  if (!found.found) {
     estimate.failure = "degenerate point configuration (no non-collinear sample)";
     return estimate;
   }
-  if (best_count < options.min_inliers) {
-    estimate.failure = "too few inliers (" + std::to_string(best_count) + " < " + std::to_string(options.min_inliers) +
-                       ")";
+  if (found.num_inliers < options.min_inliers) {
+    estimate.failure = "too few inliers (" + std::to_string(found.num_inliers) + " < " +
+                       std::to_string(options.min_inliers) + ")";
     return estimate;
   }
-
-  // Re-fit on all inliers (algebraic), then refine on the reprojection error (eq. 4).
-  std::vector<int> inliers;
-  for (int i = 0; i < n; ++i)
-    if (TransferErrorSq(best, from[i], to[i]) < threshold_sq) inliers.push_back(i);
-  Mat3 fitted;
-  if (DltNormalised(from, to, inliers, &fitted)) {
-    std::vector<int> refit_inliers;
-    for (int i = 0; i < n; ++i)
-      if (TransferErrorSq(fitted, from[i], to[i]) < threshold_sq) refit_inliers.push_back(i);
-    if (refit_inliers.size() >= inliers.size()) {
-      best = fitted;
-      inliers.swap(refit_inliers);
-    }
-  }
-  if (options.refine && options.refine_iterations > 0) {
-    Mat3 refined = best;
-    RefineNormalised(from, to, inliers, options.refine_iterations, &refined);
-    std::vector<int> refined_inliers;
-    for (int i = 0; i < n; ++i)
-      if (TransferErrorSq(refined, from[i], to[i]) < threshold_sq) refined_inliers.push_back(i);
-    best = refined;
-    inliers.swap(refined_inliers);
-  }
-
+  Mat3 best = found.model;
+  const std::vector<int> inliers = PolishOnInliers(estimator, ransac.max_error, options, &best);
   Mat3 h_pixel;
   if (!Denormalise(best, np, nc, &h_pixel) || !PlausibleHomography(h_pixel, previous, inliers)) {
     estimate.failure = "degenerate homography";

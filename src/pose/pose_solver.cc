@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <utility>
 
 #include <ceres/ceres.h>
@@ -12,6 +11,7 @@
 
 #include "core/config_registry.h"
 #include "core/error.h"
+#include "estimators/ransac.h"
 #include "pose/pose_reprojection_cost.h"
 
 namespace dynvo {
@@ -85,6 +85,37 @@ bool SolveEpnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Poi
   return true;
 }
 
+// EPnP as a RANSAC estimator (estimators/ransac.h): 4-point samples, squared reprojection
+// errors in pixels, and EPnP on all inliers as the refit.
+struct EpnpEstimator {
+  using Model = Pose;
+  static constexpr int kMinSamples = kSampleSize;
+  const std::vector<Eigen::Vector3d>& points;
+  const std::vector<Eigen::Vector2d>& pixels;
+  const Camera& camera;
+  cv::Mat k;
+
+  bool Solve(const std::vector<int>& use, Pose* camera_from_world) const {
+    std::vector<cv::Point3d> object;
+    std::vector<cv::Point2d> image;
+    object.reserve(use.size());
+    image.reserve(use.size());
+    for (int i : use) {
+      object.emplace_back(points[i].x(), points[i].y(), points[i].z());
+      image.emplace_back(pixels[i].x(), pixels[i].y());
+    }
+    return SolveEpnp(object, image, k, camera_from_world);
+  }
+  bool Estimate(const std::vector<int>& sample, Pose* model) const { return Solve(sample, model); }
+  bool Refit(const std::vector<int>& inliers, Pose* model) const { return Solve(inliers, model); }
+  void Residuals(const Pose& camera_from_world, std::vector<double>* squared) const {
+    const Eigen::Matrix3d r = camera_from_world.linear();
+    const Eigen::Vector3d t = camera_from_world.translation();
+    squared->resize(points.size());
+    for (size_t i = 0; i < points.size(); ++i) (*squared)[i] = SquaredError(r, t, camera, points[i], pixels[i]);
+  }
+};
+
 }  // namespace
 
 void PoseSolverOptions::Check() const {
@@ -113,85 +144,23 @@ PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
                      std::to_string(std::max(kSampleSize, options.min_inliers));
     return result;
   }
-
-  const cv::Mat k = camera.K();
-  std::mt19937 rng(options.seed);
-  std::vector<cv::Point3d> object(kSampleSize);
-  std::vector<cv::Point2d> image(kSampleSize);
-  std::vector<uint8_t> inliers;
-  std::vector<int> sample(kSampleSize);
-  int best_count = 0;
-  Pose best_pose = Pose::Identity();
-  int needed = options.ransac_iterations;
-  for (int it = 0; it < needed; ++it) {
-    // kSampleSize distinct indices (rejection sampling; n >= kSampleSize here).
-    for (int s = 0; s < kSampleSize; ++s) {
-      int candidate;
-      bool repeated;
-      do {
-        candidate = static_cast<int>(rng() % static_cast<unsigned>(n));
-        repeated = std::find(sample.begin(), sample.begin() + s, candidate) != sample.begin() + s;
-      } while (repeated);
-      sample[s] = candidate;
-      const Eigen::Vector3d& p = points_in_world[candidate];
-      object[s] = {p.x(), p.y(), p.z()};
-      image[s] = {pixels[candidate].x(), pixels[candidate].y()};
-    }
-    Pose hypothesis;
-    if (!SolveEpnp(object, image, k, &hypothesis)) continue;
-    int count = Classify(points_in_world, pixels, camera, hypothesis,
-                         options.ransac_threshold_px, nullptr, &inliers, nullptr);
-    if (count > best_count) {
-      // Local optimisation: EPnP on all the inliers of a new best hypothesis recovers the
-      // inliers a noisy minimal sample missed, so the stopping rule sees the true ratio.
-      if (count >= std::max(options.min_inliers, 2 * kSampleSize)) {
-        std::vector<cv::Point3d> all_object;
-        std::vector<cv::Point2d> all_image;
-        all_object.reserve(count);
-        all_image.reserve(count);
-        for (int i = 0; i < n; ++i) {
-          if (!inliers[i]) continue;
-          const Eigen::Vector3d& p = points_in_world[i];
-          all_object.emplace_back(p.x(), p.y(), p.z());
-          all_image.emplace_back(pixels[i].x(), pixels[i].y());
-        }
-        Pose improved;
-        std::vector<uint8_t> improved_inliers;
-        if (SolveEpnp(all_object, all_image, k, &improved)) {
-          const int improved_count =
-              Classify(points_in_world, pixels, camera, improved, options.ransac_threshold_px,
-                       nullptr, &improved_inliers, nullptr);
-          if (improved_count > count) {
-            count = improved_count;
-            hypothesis = improved;
-          }
-        }
-      }
-      best_count = count;
-      best_pose = hypothesis;
-      // Iterations for kConfidence that one sample was all inliers at this inlier ratio.
-      const double w = static_cast<double>(count) / n;
-      const double all_inliers = std::pow(w, kSampleSize);
-      if (all_inliers >= 1.0 - 1e-12) {
-        needed = it + 1;
-      } else {
-        // log1p keeps tiny ratios accurate; clamp in double before converting to int.
-        const double k_needed = std::log(1.0 - kConfidence) / std::log1p(-all_inliers);
-        const double capped = std::min(static_cast<double>(options.ransac_iterations),
-                                       std::ceil(k_needed));
-        needed = std::max(it + 1, static_cast<int>(capped));
-      }
-    }
-  }
-  if (best_count < options.min_inliers) {
-    result.failure = "RANSAC found " + std::to_string(best_count) + " inliers, fewer than " +
+  const EpnpEstimator estimator{points_in_world, pixels, camera, camera.K()};
+  RansacOptions ransac;
+  ransac.max_error = options.ransac_threshold_px;
+  ransac.confidence = kConfidence;
+  ransac.max_iterations = options.ransac_iterations;
+  // EPnP on all the inliers of a new best hypothesis recovers the inliers a noisy minimal
+  // sample missed, so the stopping rule sees the true ratio.
+  ransac.min_refit_inliers = std::max(options.min_inliers, 2 * kSampleSize);
+  ransac.seed = options.seed;
+  const RansacResult<Pose> found = RunRansac(estimator, n, ransac);
+  if (found.num_inliers < options.min_inliers) {
+    result.failure = "RANSAC found " + std::to_string(found.num_inliers) + " inliers, fewer than " +
                      std::to_string(options.min_inliers);
-    result.num_inliers = best_count;
+    result.num_inliers = found.num_inliers;
     return result;
   }
-  Classify(points_in_world, pixels, camera, best_pose, options.ransac_threshold_px, nullptr,
-           &inliers, nullptr);
-  return RefinePose(points_in_world, pixels, camera, best_pose, options, &inliers);
+  return RefinePose(points_in_world, pixels, camera, found.model, options, &found.inliers);
 }
 
 PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,

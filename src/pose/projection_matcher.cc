@@ -128,41 +128,39 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
                            predicted_camera_from_world, options, nullptr);
 }
 
-std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
-                                     const cv::Mat& point_descriptors,
-                                     const FrameFeatures& features, const Camera& camera,
-                                     const Pose& predicted_camera_from_world,
-                                     const MatchOptions& options,
-                                     const std::vector<float>* point_angles_deg) {
-  options.Check();
+namespace {
+
+void CheckMatchInputs(const std::vector<Eigen::Vector3d>& points_in_world, const cv::Mat& point_descriptors,
+                      const FrameFeatures& features, const std::vector<float>* point_angles_deg) {
   const int num_points = static_cast<int>(points_in_world.size());
   const int num_features = static_cast<int>(features.size());
-  if (num_points > 0 && (point_descriptors.type() != CV_8UC1 ||
-                         point_descriptors.rows != num_points ||
+  if (num_points > 0 && (point_descriptors.type() != CV_8UC1 || point_descriptors.rows != num_points ||
                          point_descriptors.cols != kDescriptorBytes))
     throw InputError("MatchByProjection: point descriptors must be " + std::to_string(num_points) +
                      " x 32 CV_8UC1 (one row per point)");
   if (num_features > 0 &&
       (features.descriptors.type() != CV_8UC1 || features.descriptors.rows != num_features ||
-       features.descriptors.cols != kDescriptorBytes ||
-       features.pixels.size() != features.keypoints.size()))
+       features.descriptors.cols != kDescriptorBytes || features.pixels.size() != features.keypoints.size()))
     throw InputError("MatchByProjection: features need one 32-byte descriptor and one pixel each");
   if (point_angles_deg != nullptr && static_cast<int>(point_angles_deg->size()) != num_points)
     throw InputError("MatchByProjection: point angles must have one entry per point");
-  std::vector<Match> matches;
-  if (num_points == 0 || num_features == 0) return matches;
+}
 
+// For each point projected by `camera_from_world`, the feature within the search radius with the
+// closest descriptor (passing the distance bar and the ratio test); each feature keeps the point
+// with its closest descriptor. In feature order.
+std::vector<Match> NearestByDescriptor(const std::vector<Eigen::Vector3d>& points_in_world,
+                                       const cv::Mat& point_descriptors, const FrameFeatures& features,
+                                       const Camera& camera, const Pose& camera_from_world,
+                                       const MatchOptions& options) {
+  const int num_features = static_cast<int>(features.size());
   const double radius = options.search_radius_px;
-  const double cell = std::max(8.0, radius);
-  const FeatureGrid grid(features.pixels, camera.width, camera.height, cell);
-
-  // Best point per feature (at most one point per feature; the closest descriptor wins).
+  const FeatureGrid grid(features.pixels, camera.width, camera.height, std::max(8.0, radius));
   std::vector<int> best_point(num_features, -1);
   std::vector<int> best_distance(num_features, INT_MAX);
-  const Eigen::Matrix3d rotation = predicted_camera_from_world.linear();
-  const Eigen::Vector3d translation = predicted_camera_from_world.translation();
-  const double radius2 = radius * radius;
-  for (int p = 0; p < num_points; ++p) {
+  const Eigen::Matrix3d rotation = camera_from_world.linear();
+  const Eigen::Vector3d translation = camera_from_world.translation();
+  for (int p = 0; p < static_cast<int>(points_in_world.size()); ++p) {
     const Eigen::Vector3d pc = rotation * points_in_world[p] + translation;
     if (!(pc.z() > 1e-6)) continue;
     const Eigen::Vector2d uv = camera.Project(pc);
@@ -173,7 +171,7 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
     const unsigned char* descriptor = point_descriptors.ptr<unsigned char>(p);
     int best = INT_MAX, second = INT_MAX, best_feature = -1;
     grid.ForEachNear(uv, radius, [&](int f) {
-      if ((features.pixels[f] - uv).squaredNorm() > radius2) return;
+      if ((features.pixels[f] - uv).squaredNorm() > radius * radius) return;
       const int d = DescriptorDistance(descriptor, features.descriptors.ptr<unsigned char>(f));
       if (d < best) {
         second = best;
@@ -190,34 +188,53 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
       best_point[best_feature] = p;
     }
   }
-
+  std::vector<Match> matches;
   for (int f = 0; f < num_features; ++f)
     if (best_point[f] >= 0) matches.push_back({f, best_point[f], best_distance[f]});
+  return matches;
+}
 
-  if (options.check_orientation && point_angles_deg != nullptr && !matches.empty()) {
-    std::vector<std::vector<int>> histogram(kHistogramBins);
-    for (int m = 0; m < static_cast<int>(matches.size()); ++m) {
-      double rotation_deg = features.keypoints[matches[m].feature_index].angle -
-                            (*point_angles_deg)[matches[m].point_index];
-      rotation_deg = std::fmod(rotation_deg, 360.0);
-      if (rotation_deg < 0.0) rotation_deg += 360.0;
-      const int bin = static_cast<int>(std::lround(rotation_deg * kHistogramBins / 360.0)) %
-                      kHistogramBins;
-      histogram[bin].push_back(m);
-    }
-    int b1, b2, b3;
-    TopBins(histogram, &b1, &b2, &b3);
-    std::vector<uint8_t> keep(matches.size(), 0);
-    for (int b : {b1, b2, b3})
-      if (b >= 0)
-        for (int m : histogram[b]) keep[m] = 1;
-    std::vector<Match> consistent;
-    consistent.reserve(matches.size());
-    for (size_t m = 0; m < matches.size(); ++m)
-      if (keep[m]) consistent.push_back(matches[m]);
-    matches.swap(consistent);
+// Keeps the matches in the three most common bins of the rotation between feature and point
+// angle (ORB-SLAM's rotation-consistency histogram).
+std::vector<Match> RotationConsistent(const std::vector<Match>& matches, const FrameFeatures& features,
+                                      const std::vector<float>& point_angles_deg) {
+  std::vector<std::vector<int>> histogram(kHistogramBins);
+  for (int m = 0; m < static_cast<int>(matches.size()); ++m) {
+    double rotation_deg =
+        features.keypoints[matches[m].feature_index].angle - point_angles_deg[matches[m].point_index];
+    rotation_deg = std::fmod(rotation_deg, 360.0);
+    if (rotation_deg < 0.0) rotation_deg += 360.0;
+    const int bin = static_cast<int>(std::lround(rotation_deg * kHistogramBins / 360.0)) % kHistogramBins;
+    histogram[bin].push_back(m);
   }
+  int b1, b2, b3;
+  TopBins(histogram, &b1, &b2, &b3);
+  std::vector<uint8_t> keep(matches.size(), 0);
+  for (int b : {b1, b2, b3})
+    if (b >= 0)
+      for (int m : histogram[b]) keep[m] = 1;
+  std::vector<Match> consistent;
+  consistent.reserve(matches.size());
+  for (size_t m = 0; m < matches.size(); ++m)
+    if (keep[m]) consistent.push_back(matches[m]);
+  return consistent;
+}
 
+}  // namespace
+
+std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
+                                     const cv::Mat& point_descriptors,
+                                     const FrameFeatures& features, const Camera& camera,
+                                     const Pose& predicted_camera_from_world,
+                                     const MatchOptions& options,
+                                     const std::vector<float>* point_angles_deg) {
+  options.Check();
+  CheckMatchInputs(points_in_world, point_descriptors, features, point_angles_deg);
+  if (points_in_world.empty() || features.size() == 0) return {};
+  std::vector<Match> matches = NearestByDescriptor(points_in_world, point_descriptors, features, camera,
+                                                   predicted_camera_from_world, options);
+  if (options.check_orientation && point_angles_deg != nullptr && !matches.empty())
+    matches = RotationConsistent(matches, features, *point_angles_deg);
   std::sort(matches.begin(), matches.end(),
             [](const Match& a, const Match& b) { return a.point_index < b.point_index; });
   return matches;

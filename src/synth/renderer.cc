@@ -37,6 +37,25 @@ float ReliefAt(const TexturedQuad& quad, const cv::Vec2f& ab) {
   return static_cast<float>(quad.relief_m) * relief.at<float>(ty, tx);
 }
 
+// The colour of texture image `img` at texture coordinates `uv` in [0, 1), bilinear, times `shade`.
+cv::Vec3b SampleBilinear(const cv::Mat& img, const cv::Vec2f& uv, float shade) {
+  const float fu = std::clamp(uv[0] * img.cols - 0.5f, 0.0f, img.cols - 1.001f);
+  const float fv = std::clamp(uv[1] * img.rows - 0.5f, 0.0f, img.rows - 1.001f);
+  const int iu = static_cast<int>(fu), iv = static_cast<int>(fv);
+  const float du = fu - iu, dv = fv - iv;
+  const int cn = img.channels();
+  const uchar* r0 = img.ptr<uchar>(iv) + iu * cn;
+  const uchar* r1 = img.ptr<uchar>(std::min(iv + 1, img.rows - 1)) + iu * cn;
+  const int step = iu + 1 < img.cols ? cn : 0;
+  cv::Vec3b out;
+  for (int c = 0; c < 3; ++c) {
+    const float top = r0[c] + du * (r0[c + step] - r0[c]);
+    const float bottom = r1[c] + du * (r1[c + step] - r1[c]);
+    out[c] = cv::saturate_cast<uchar>((top + dv * (bottom - top)) * shade);
+  }
+  return out;
+}
+
 }  // namespace
 
 Renderer::Renderer(const Camera& camera) : camera_(camera) {
@@ -86,85 +105,98 @@ Eigen::Vector2d Renderer::ProjectPoint(const Eigen::Vector3d& p) const {
   return {camera_.fx * xd + camera_.cx, camera_.fy * yd + camera_.cy};
 }
 
-RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world) const {
-  const int w = camera_.width, h = camera_.height;
-  cv::Mat zbuf(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
-  cv::Mat index(h, w, CV_32S, cv::Scalar(-1));
-  cv::Mat coords(h, w, CV_32FC2);
-  std::vector<Eigen::Vector3d> normals(quads.size(), Eigen::Vector3d::UnitZ());
-  const Eigen::Matrix3d rot = camera_from_world.linear();
+bool Renderer::ScreenBox(const std::vector<Eigen::Vector3d>& polygon, cv::Rect* box) const {
   const bool distorted = camera_.HasDistortion();
+  double bx0 = 1e18, by0 = 1e18, bx1 = -1e18, by1 = -1e18;
+  const int samples = distorted ? 8 : 1;
+  for (size_t i = 0; i < polygon.size(); ++i)
+    for (int s = 0; s < samples; ++s) {
+      const Eigen::Vector3d p = polygon[i] + (polygon[(i + 1) % polygon.size()] - polygon[i]) * (double(s) / samples);
+      const Eigen::Vector2d px = distorted ? ProjectPoint(p) : camera_.Project(p);
+      bx0 = std::min(bx0, px.x());
+      by0 = std::min(by0, px.y());
+      bx1 = std::max(bx1, px.x());
+      by1 = std::max(by1, px.y());
+    }
+  const int margin = distorted ? 3 : 1;
+  const int x0 = std::max(0, static_cast<int>(std::floor(bx0)) - margin);
+  const int y0 = std::max(0, static_cast<int>(std::floor(by0)) - margin);
+  const int x1 = std::min(camera_.width - 1, static_cast<int>(std::ceil(bx1)) + margin);
+  const int y1 = std::min(camera_.height - 1, static_cast<int>(std::ceil(by1)) + margin);
+  if (x0 > x1 || y0 > y1) return false;
+  *box = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+  return true;
+}
 
-  for (size_t qi = 0; qi < quads.size(); ++qi) {
-    const TexturedQuad& quad = quads[qi];
-    if (!quad.texture || quad.texture->levels.empty()) continue;
-    const Eigen::Vector3d p0 = camera_from_world * quad.origin;
-    const Eigen::Vector3d u = rot * quad.edge_u, v = rot * quad.edge_v;
-    normals[qi] = u.cross(v).normalized();
-    Polygon poly = {p0, p0 + u, p0 + u + v, p0 + v};
-    poly = ClipPolygon(poly, Eigen::Vector3d(0, 0, 1), -kNear);
-    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(1, 0, -x_min_), 0);
-    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(-1, 0, x_max_), 0);
-    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, 1, -y_min_), 0);
-    if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, -1, y_max_), 0);
-    if (poly.size() < 3) continue;
-    double bx0 = 1e18, by0 = 1e18, bx1 = -1e18, by1 = -1e18;
-    const int samples = distorted ? 8 : 1;
-    for (size_t i = 0; i < poly.size(); ++i)
-      for (int s = 0; s < samples; ++s) {
-        const Eigen::Vector3d p = poly[i] + (poly[(i + 1) % poly.size()] - poly[i]) * (double(s) / samples);
-        const Eigen::Vector2d px = distorted ? ProjectPoint(p) : camera_.Project(p);
-        bx0 = std::min(bx0, px.x());
-        by0 = std::min(by0, px.y());
-        bx1 = std::max(bx1, px.x());
-        by1 = std::max(by1, px.y());
+void Renderer::RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pose& camera_from_world,
+                             RasterBuffers* buffers, Eigen::Vector3d* normal) const {
+  if (!quad.texture || quad.texture->levels.empty()) return;
+  const Eigen::Matrix3d rot = camera_from_world.linear();
+  const Eigen::Vector3d p0 = camera_from_world * quad.origin;
+  const Eigen::Vector3d u = rot * quad.edge_u, v = rot * quad.edge_v;
+  *normal = u.cross(v).normalized();
+  Polygon poly = {p0, p0 + u, p0 + u + v, p0 + v};
+  poly = ClipPolygon(poly, Eigen::Vector3d(0, 0, 1), -kNear);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(1, 0, -x_min_), 0);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(-1, 0, x_max_), 0);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, 1, -y_min_), 0);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, -1, y_max_), 0);
+  cv::Rect box;
+  if (poly.size() < 3 || !ScreenBox(poly, &box)) return;
+  Eigen::Matrix3d a;
+  a.col(0) = u;
+  a.col(1) = v;
+  a.col(2) = p0;
+  if (std::abs(a.determinant()) < 1e-12) return;  // seen exactly edge-on
+  const Eigen::Matrix3d m = a.inverse();
+  const float m00 = float(m(0, 0)), m01 = float(m(0, 1)), m02 = float(m(0, 2));
+  const float m10 = float(m(1, 0)), m11 = float(m(1, 1)), m12 = float(m(1, 2));
+  const float m20 = float(m(2, 0)), m21 = float(m(2, 1)), m22 = float(m(2, 2));
+  const cv::Mat& base = quad.texture->levels[0];
+  const bool has_alpha = base.channels() == 4;
+  const float z_near = static_cast<float>(kNear);
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
+    float* zrow = buffers->zbuf.ptr<float>(y);
+    int* irow = buffers->index.ptr<int>(y);
+    cv::Vec2f* crow = buffers->coords.ptr<cv::Vec2f>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      const float rx = ray[x][0], ry = ray[x][1];
+      const float q2 = m20 * rx + m21 * ry + m22;
+      if (q2 <= 0.0f) continue;
+      const float z = 1.0f / q2;
+      if (z >= zrow[x] || z < z_near) continue;
+      const float qa = (m00 * rx + m01 * ry + m02) * z;
+      if (qa < 0.0f || qa >= 1.0f) continue;
+      const float qb = (m10 * rx + m11 * ry + m12) * z;
+      if (qb < 0.0f || qb >= 1.0f) continue;
+      if (has_alpha) {
+        const int tx = std::min(base.cols - 1, static_cast<int>(qa * base.cols));
+        const int ty = std::min(base.rows - 1, static_cast<int>(qb * base.rows));
+        if (base.ptr<cv::Vec4b>(ty)[tx][3] < 128) continue;
       }
-    const int margin = distorted ? 3 : 1;
-    const int x0 = std::max(0, static_cast<int>(std::floor(bx0)) - margin);
-    const int y0 = std::max(0, static_cast<int>(std::floor(by0)) - margin);
-    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(bx1)) + margin);
-    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(by1)) + margin);
-    if (x0 > x1 || y0 > y1) continue;
-
-    Eigen::Matrix3d a;
-    a.col(0) = u;
-    a.col(1) = v;
-    a.col(2) = p0;
-    if (std::abs(a.determinant()) < 1e-12) continue;  // seen exactly edge-on
-    const Eigen::Matrix3d m = a.inverse();
-    const float m00 = float(m(0, 0)), m01 = float(m(0, 1)), m02 = float(m(0, 2));
-    const float m10 = float(m(1, 0)), m11 = float(m(1, 1)), m12 = float(m(1, 2));
-    const float m20 = float(m(2, 0)), m21 = float(m(2, 1)), m22 = float(m(2, 2));
-    const cv::Mat& base = quad.texture->levels[0];
-    const bool has_alpha = base.channels() == 4;
-    const float z_near = static_cast<float>(kNear);
-    for (int y = y0; y <= y1; ++y) {
-      const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
-      float* zrow = zbuf.ptr<float>(y);
-      int* irow = index.ptr<int>(y);
-      cv::Vec2f* crow = coords.ptr<cv::Vec2f>(y);
-      for (int x = x0; x <= x1; ++x) {
-        const float rx = ray[x][0], ry = ray[x][1];
-        const float q2 = m20 * rx + m21 * ry + m22;
-        if (q2 <= 0.0f) continue;
-        const float z = 1.0f / q2;
-        if (z >= zrow[x] || z < z_near) continue;
-        const float qa = (m00 * rx + m01 * ry + m02) * z;
-        if (qa < 0.0f || qa >= 1.0f) continue;
-        const float qb = (m10 * rx + m11 * ry + m12) * z;
-        if (qb < 0.0f || qb >= 1.0f) continue;
-        if (has_alpha) {
-          const int tx = std::min(base.cols - 1, static_cast<int>(qa * base.cols));
-          const int ty = std::min(base.rows - 1, static_cast<int>(qb * base.rows));
-          if (base.ptr<cv::Vec4b>(ty)[tx][3] < 128) continue;
-        }
-        zrow[x] = z;
-        irow[x] = static_cast<int>(qi);
-        crow[x] = cv::Vec2f(qa, qb);
-      }
+      zrow[x] = z;
+      irow[x] = quad_index;
+      crow[x] = cv::Vec2f(qa, qb);
     }
   }
+}
 
+RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world) const {
+  const int w = camera_.width, h = camera_.height;
+  RasterBuffers buffers;
+  buffers.zbuf = cv::Mat(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
+  buffers.index = cv::Mat(h, w, CV_32S, cv::Scalar(-1));
+  buffers.coords = cv::Mat(h, w, CV_32FC2);
+  std::vector<Eigen::Vector3d> normals(quads.size(), Eigen::Vector3d::UnitZ());
+  for (size_t qi = 0; qi < quads.size(); ++qi)
+    RasteriseQuad(quads[qi], static_cast<int>(qi), camera_from_world, &buffers, &normals[qi]);
+  return Shade(quads, buffers, normals);
+}
+
+RenderResult Renderer::Shade(const std::vector<TexturedQuad>& quads, const RasterBuffers& buffers,
+                             const std::vector<Eigen::Vector3d>& normals) const {
+  const int w = camera_.width, h = camera_.height;
   RenderResult result;
   result.bgr.create(h, w, CV_8UC3);
   result.bgr.setTo(cv::Scalar::all(0));
@@ -172,7 +204,7 @@ RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose
   result.depth.setTo(0);
   result.object_id.create(h, w, CV_16U);
   result.object_id.setTo(0);
-  // Per quad: normal in the camera frame and 1 / (focal * texel)^2 for the mip level choice.
+  // Per quad: 1 / (focal * texel)^2 for the mip level choice.
   const double focal = 0.5 * (camera_.fx + camera_.fy);
   std::vector<float> inv_footprint2(quads.size(), 0.0f);
   for (size_t qi = 0; qi < quads.size(); ++qi)
@@ -184,9 +216,9 @@ RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose
   float level_threshold2[8];
   for (int l = 0; l < 8; ++l) level_threshold2[l] = std::pow(2.0f, 2.0f * (l + 1) - 0.6f);
   for (int y = 0; y < h; ++y) {
-    const int* irow = index.ptr<int>(y);
-    const float* zrow = zbuf.ptr<float>(y);
-    const cv::Vec2f* crow = coords.ptr<cv::Vec2f>(y);
+    const int* irow = buffers.index.ptr<int>(y);
+    const float* zrow = buffers.zbuf.ptr<float>(y);
+    const cv::Vec2f* crow = buffers.coords.ptr<cv::Vec2f>(y);
     const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
     cv::Vec3b* out = result.bgr.ptr<cv::Vec3b>(y);
     float* dout = result.depth.ptr<float>(y);
@@ -210,20 +242,7 @@ RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose
       const int max_level = static_cast<int>(tex.levels.size()) - 1;
       int level = 0;
       while (level < max_level && footprint2 >= level_threshold2[level]) ++level;
-      const cv::Mat& img = tex.levels[static_cast<size_t>(level)];
-      const float fu = std::clamp(crow[x][0] * img.cols - 0.5f, 0.0f, img.cols - 1.001f);
-      const float fv = std::clamp(crow[x][1] * img.rows - 0.5f, 0.0f, img.rows - 1.001f);
-      const int iu = static_cast<int>(fu), iv = static_cast<int>(fv);
-      const float du = fu - iu, dv = fv - iv;
-      const int cn = img.channels();
-      const uchar* r0 = img.ptr<uchar>(iv) + iu * cn;
-      const uchar* r1 = img.ptr<uchar>(std::min(iv + 1, img.rows - 1)) + iu * cn;
-      const int step = iu + 1 < img.cols ? cn : 0;
-      for (int c = 0; c < 3; ++c) {
-        const float top = r0[c] + du * (r0[c + step] - r0[c]);
-        const float bottom = r1[c] + du * (r1[c + step] - r1[c]);
-        out[x][c] = cv::saturate_cast<uchar>((top + dv * (bottom - top)) * quad.shade);
-      }
+      out[x] = SampleBilinear(tex.levels[static_cast<size_t>(level)], crow[x], quad.shade);
     }
   }
   return result;

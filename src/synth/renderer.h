@@ -35,6 +35,20 @@ class Renderer {
   const Camera& camera() const { return camera_; }
 
  private:
+  // Per pixel: the nearest depth so far, the quad drawn there (-1 = none), its texture coordinates.
+  struct RasterBuffers {
+    cv::Mat zbuf, index, coords;  // CV_32F, CV_32S, CV_32FC2
+  };
+  // The pixel box (clipped to the image, with a margin) of a polygon in camera coordinates;
+  // false when it is empty.
+  bool ScreenBox(const std::vector<Eigen::Vector3d>& polygon, cv::Rect* box) const;
+  // Draws one quad into the buffers where it is nearer; `normal` gets its camera-frame normal.
+  void RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pose& camera_from_world,
+                     RasterBuffers* buffers, Eigen::Vector3d* normal) const;
+  // The colour (mip-mapped, bilinear), depth and object id of every pixel the buffers cover.
+  RenderResult Shade(const std::vector<TexturedQuad>& quads, const RasterBuffers& buffers,
+                     const std::vector<Eigen::Vector3d>& normals) const;
+
   Camera camera_;
   cv::Mat rays_;  // CV_32FC2: normalised (x/z, y/z) of each pixel's ray
   double x_min_ = 0, x_max_ = 0, y_min_ = 0, y_max_ = 0;  // ray bounds, with margin

@@ -70,30 +70,74 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
   options_.Check();
 }
 
+TrackingResult FrameTracker::Initialise(const FrameFeatures& features, double stamp) {
+  const Clock::time_point start = Clock::now();
+  TrackingResult result;
+  result.world_from_camera = motion_.Predict(stamp);
+  result.state = TrackingState::kInitializing;
+  if (SeedMap(features, stamp, result.world_from_camera)) {
+    initialized_ = true;
+    result.keyframe_inserted = true;
+  } else {
+    result.note = "too few features with depth to initialise the map";
+  }
+  motion_.Update(result.world_from_camera, stamp);
+  result.map_ms = MillisecondsSince(start);
+  result.map_keyframes = static_cast<int>(map_.num_keyframes());
+  result.map_points = static_cast<int>(map_.num_points());
+  return result;
+}
+
+void FrameTracker::AcceptPose(const FrameFeatures& used, double stamp, const std::vector<Match>& matches,
+                              const PoseEstimate& estimate, TrackingResult& result) {
+  const Clock::time_point start = Clock::now();
+  result.state = TrackingState::kTracking;
+  result.num_inliers = estimate.num_inliers;
+  result.world_from_camera = estimate.camera_from_world.inverse();
+  consecutive_lost_ = 0;
+  ++frames_since_keyframe_;
+  result.feature_inliers.assign(used.size(), 0);
+  for (size_t i = 0; i < matches.size(); ++i) {
+    if (!estimate.inliers[i]) continue;
+    map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
+    result.feature_inliers[static_cast<size_t>(matches[i].feature_index)] = 1;
+  }
+  const Pose keyframe_camera_from_world = map_.keyframes().back().camera_from_world;
+  const KeyframeDecision decision =
+      DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers, reference_tracked_,
+                     keyframe_camera_from_world, estimate.camera_from_world);
+  result.map_ms = MillisecondsSince(start);
+  if (decision.insert)
+    result.world_from_camera =
+        InsertKeyframe(used, stamp, matches, estimate.inliers, result.world_from_camera, result);
+}
+
+void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, const Pose& predicted_world_from_camera,
+                                 const std::string& failure, TrackingResult& result) {
+  const Clock::time_point start = Clock::now();
+  result.world_from_camera = predicted_world_from_camera;
+  result.state = TrackingState::kLost;
+  result.note = failure;
+  ++consecutive_lost_;
+  if (consecutive_lost_ >= options_.lost_frames_before_reseed &&
+      SeedMap(features, stamp, predicted_world_from_camera)) {
+    result.state = TrackingState::kReinitialized;
+    result.note = "map re-seeded at the motion-model pose after " + std::to_string(consecutive_lost_) +
+                  " lost frames; last failure: " + failure;
+    result.keyframe_inserted = true;
+    consecutive_lost_ = 0;
+  }
+  result.map_ms = MillisecondsSince(start);
+}
+
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
                                    const FrameFeatures* masked) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
+  if (!initialized_) return Initialise(features, stamp);
+
   TrackingResult result;
-
-  if (!initialized_) {
-    const Clock::time_point start = Clock::now();
-    result.world_from_camera = motion_.Predict(stamp);
-    result.state = TrackingState::kInitializing;
-    if (SeedMap(features, stamp, result.world_from_camera)) {
-      initialized_ = true;
-      result.keyframe_inserted = true;
-    } else {
-      result.note = "too few features with depth to initialise the map";
-    }
-    motion_.Update(result.world_from_camera, stamp);
-    result.map_ms = MillisecondsSince(start);
-    result.map_keyframes = static_cast<int>(map_.num_keyframes());
-    result.map_points = static_cast<int>(map_.num_points());
-    return result;
-  }
-
   const Pose predicted_world_from_camera = motion_.Predict(stamp);
   std::vector<Match> matches;
   std::string failure;
@@ -110,43 +154,10 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
   moving_features_.assign(used.size(), 0);
   if (estimate.ok && options_.coherent_motion.enabled)
     RejectCoherentMotion(used, matches, estimate, result);
-
-  const Clock::time_point start = Clock::now();
-  if (estimate.ok) {
-    result.state = TrackingState::kTracking;
-    result.num_inliers = estimate.num_inliers;
-    result.world_from_camera = estimate.camera_from_world.inverse();
-    consecutive_lost_ = 0;
-    ++frames_since_keyframe_;
-    result.feature_inliers.assign(used.size(), 0);
-    for (size_t i = 0; i < matches.size(); ++i) {
-      if (!estimate.inliers[i]) continue;
-      map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
-      result.feature_inliers[static_cast<size_t>(matches[i].feature_index)] = 1;
-    }
-    const Pose keyframe_camera_from_world = map_.keyframes().back().camera_from_world;
-    const KeyframeDecision decision =
-        DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers,
-                       reference_tracked_, keyframe_camera_from_world, estimate.camera_from_world);
-    result.map_ms = MillisecondsSince(start);
-    if (decision.insert)
-      result.world_from_camera = InsertKeyframe(used, stamp, matches, estimate.inliers,
-                                                result.world_from_camera, result);
-  } else {
-    result.world_from_camera = predicted_world_from_camera;
-    result.state = TrackingState::kLost;
-    result.note = failure;
-    ++consecutive_lost_;
-    if (consecutive_lost_ >= options_.lost_frames_before_reseed &&
-        SeedMap(features, stamp, predicted_world_from_camera)) {
-      result.state = TrackingState::kReinitialized;
-      result.note = "map re-seeded at the motion-model pose after " +
-                    std::to_string(consecutive_lost_) + " lost frames; last failure: " + failure;
-      result.keyframe_inserted = true;
-      consecutive_lost_ = 0;
-    }
-    result.map_ms = MillisecondsSince(start);
-  }
+  if (estimate.ok)
+    AcceptPose(used, stamp, matches, estimate, result);
+  else
+    HandleFailure(features, stamp, predicted_world_from_camera, failure, result);
   motion_.Update(result.world_from_camera, stamp);
   result.map_keyframes = static_cast<int>(map_.num_keyframes());
   result.map_points = static_cast<int>(map_.num_points());
@@ -187,59 +198,65 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
               std::to_string(options_.min_matches) + ")";
   }
   result.pose_ms = MillisecondsSince(start);
-  // The prediction may be off by more than the matcher's tolerance on fast motion, so some
-  // matches are wrong and others missed: match again around an estimate, with a tighter
-  // window, and refine from it; keeps the result with more inliers.
-  auto polish = [&](PoseEstimate& current, std::vector<Match>& current_matches) {
-    if (!current.ok || options_.rematch_radius_px <= 0.0) return;
-    Clock::time_point t0 = Clock::now();
-    MatchOptions tight = options_.matching;
-    tight.search_radius_px = options_.rematch_radius_px;
-    std::vector<Match> rematched =
-        MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
-                          current.camera_from_world, tight, &visible_angles_);
-    result.match_ms += MillisecondsSince(t0);
-    t0 = Clock::now();
-    if (static_cast<int>(rematched.size()) >= options_.min_matches) {
-      Correspondences(features, rematched, points, pixels);
-      PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world,
-                                       options_.pose);
-      if (second.ok && second.num_inliers >= current.num_inliers) {
-        current = std::move(second);
-        current_matches = std::move(rematched);
-      }
-    }
-    result.pose_ms += MillisecondsSince(t0);
-  };
-  polish(estimate, matches);
+  RematchAroundEstimate(features, estimate, matches, result);
   if (!estimate.ok && features.size() > 0 && !visible_ids_.empty()) {
-    start = Clock::now();
-    MatchOptions wide = options_.matching;
-    wide.search_radius_px = wide_radius;
-    matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
-                                predicted_camera_from_world, wide, &visible_angles_);
-    result.match_ms += MillisecondsSince(start);
-    start = Clock::now();
-    if (static_cast<int>(matches.size()) >= options_.min_matches) {
-      Correspondences(features, matches, points, pixels);
-      estimate = EstimatePose(points, pixels, camera_, options_.pose);
-      if (estimate.ok && estimate.num_inliers < options_.min_matches) {
-        estimate.ok = false;
-        estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
-      }
-      if (estimate.ok)
-        result.used_epnp = true;
-      else
-        failure += "; EPnP on " + std::to_string(matches.size()) + " wide matches failed (" +
-                   estimate.failure + ")";
-    } else {
-      failure += "; " + std::to_string(matches.size()) + " matches on the wide search";
-    }
-    result.pose_ms += MillisecondsSince(start);
+    EstimateOnWideSearch(features, predicted_camera_from_world, wide_radius, matches, estimate, failure, result);
+    if (result.used_epnp) RematchAroundEstimate(features, estimate, matches, result);
   }
-  if (result.used_epnp) polish(estimate, matches);
   result.num_matches = static_cast<int>(matches.size());
   return estimate;
+}
+
+void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current,
+                                         std::vector<Match>& current_matches, TrackingResult& result) {
+  if (!current.ok || options_.rematch_radius_px <= 0.0) return;
+  Clock::time_point start = Clock::now();
+  MatchOptions tight = options_.matching;
+  tight.search_radius_px = options_.rematch_radius_px;
+  std::vector<Match> rematched = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
+                                                   current.camera_from_world, tight, &visible_angles_);
+  result.match_ms += MillisecondsSince(start);
+  start = Clock::now();
+  if (static_cast<int>(rematched.size()) >= options_.min_matches) {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    Correspondences(features, rematched, points, pixels);
+    PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world, options_.pose);
+    if (second.ok && second.num_inliers >= current.num_inliers) {
+      current = std::move(second);
+      current_matches = std::move(rematched);
+    }
+  }
+  result.pose_ms += MillisecondsSince(start);
+}
+
+void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pose& predicted_camera_from_world,
+                                        double wide_radius, std::vector<Match>& matches, PoseEstimate& estimate,
+                                        std::string& failure, TrackingResult& result) {
+  Clock::time_point start = Clock::now();
+  MatchOptions wide = options_.matching;
+  wide.search_radius_px = wide_radius;
+  matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_, predicted_camera_from_world,
+                              wide, &visible_angles_);
+  result.match_ms += MillisecondsSince(start);
+  start = Clock::now();
+  if (static_cast<int>(matches.size()) >= options_.min_matches) {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    Correspondences(features, matches, points, pixels);
+    estimate = EstimatePose(points, pixels, camera_, options_.pose);
+    if (estimate.ok && estimate.num_inliers < options_.min_matches) {
+      estimate.ok = false;
+      estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
+    }
+    if (estimate.ok)
+      result.used_epnp = true;
+    else
+      failure += "; EPnP on " + std::to_string(matches.size()) + " wide matches failed (" + estimate.failure + ")";
+  } else {
+    failure += "; " + std::to_string(matches.size()) + " matches on the wide search";
+  }
+  result.pose_ms += MillisecondsSince(start);
 }
 
 bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,

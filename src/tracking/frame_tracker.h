@@ -112,6 +112,15 @@ class FrameTracker {
   const TrackerOptions& options() const { return options_; }
 
  private:
+  // The first frames: the identity until a frame has enough depth features to seed the map.
+  TrackingResult Initialise(const FrameFeatures& features, double stamp);
+  // A frame whose pose was estimated: its inliers seen, and a keyframe when the policy says so.
+  void AcceptPose(const FrameFeatures& used, double stamp, const std::vector<Match>& matches,
+                  const PoseEstimate& estimate, TrackingResult& result);
+  // A frame whose pose failed: the motion model's pose, and the map re-seeded after
+  // lost_frames_before_reseed such frames.
+  void HandleFailure(const FrameFeatures& features, double stamp, const Pose& predicted_world_from_camera,
+                     const std::string& failure, TrackingResult& result);
   // Matches the frame to the map around the prediction and estimates its pose: refinement of
   // the prediction, else EPnP + RANSAC on a wider search; then re-matching within
   // rematch_radius_px of that estimate and refining, kept when it has at least as many
@@ -121,6 +130,16 @@ class FrameTracker {
                                  const Pose& predicted_camera_from_world,
                                  std::vector<Match>& matches, std::string& failure,
                                  TrackingResult& result);
+  // The prediction may be off by more than the matcher's tolerance on fast motion, so some
+  // matches are wrong and others missed: matches again within rematch_radius_px of `current`
+  // and refines from it; keeps the result with more inliers (and its matches).
+  void RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current,
+                             std::vector<Match>& current_matches, TrackingResult& result);
+  // EPnP + RANSAC on matches within `wide_radius` of the prediction (into `matches`), into
+  // `estimate` when there are enough of them; appends why it failed to `failure`.
+  void EstimateOnWideSearch(const FrameFeatures& features, const Pose& predicted_camera_from_world,
+                            double wide_radius, std::vector<Match>& matches, PoseEstimate& estimate,
+                            std::string& failure, TrackingResult& result);
   // Refines `estimate` again with the masked features that VerifyStaticFeatures accepts at its
   // pose; those that are inliers of the refined pose are appended to `matches`, and `joined`
   // gets `features` followed by them (the new matches index `joined`). False, with everything
