@@ -388,9 +388,10 @@ def debug_frames_of(run):
 def main(argv):
     args = parse_args(argv)
     try:
+        import importlib
         import matplotlib
         matplotlib.use("Agg")
-        import numpy  # noqa: F401
+        importlib.import_module("numpy")
     except ImportError as e:
         raise FigureError("%s: run with Debian's python3 (apt install python3-matplotlib "
                           "python3-numpy), e.g. via bash tools/figures.sh" % e)

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run the odometry on a TUM RGB-D sequence folder");
   run->add_option("--dataset", request.dataset, "TUM sequence folder (rgb.txt, depth.txt, ...)")
       ->required();
-  run->add_option("--config", request.config_path, "JSON config (default: built-in defaults = paper)");
+  run->add_option("--config", request.config_path, "JSON config (default: the built-in recommended config, = configs/dynvo.json; configs/paper.json is the paper's method)");
   run->add_option("--out", request.out_dir, "output folder (created when missing)")->required();
   run->add_option("--set", request.overrides, "override one config key: key=value (repeatable)")
       ->allow_extra_args(false);
