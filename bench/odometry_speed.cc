@@ -67,8 +67,8 @@ MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>&
       const auto start = Clock::now();
       // OpenCV's Rt maps points of the source (previous) camera into the destination
       // (current) camera: dst_p = Rt * src_p, i.e. current_from_previous.
-      const bool ok = odometry->compute(frames[i - 1].gray, frames[i - 1].depth, no_mask,
-                                        frames[i].gray, frames[i].depth, no_mask, rt);
+      const bool ok = odometry->compute(frames[i - 1].gray, frames[i - 1].depth, no_mask, frames[i].gray,
+                                        frames[i].depth, no_mask, rt);
       times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
       if (ok) {
         Eigen::Matrix4d m;
@@ -88,8 +88,7 @@ MethodResult RunPeer(const std::string& name, const cv::Ptr<cv::rgbd::Odometry>&
 
 // The image area of frames of `camera` resized to `scaled`'s size (pixel centres scale about
 // the image corner, as for the principal point).
-dynvo::ImageArea ScaledArea(const dynvo::ImageArea& area, const dynvo::Camera& camera,
-                            const dynvo::Camera& scaled) {
+dynvo::ImageArea ScaledArea(const dynvo::ImageArea& area, const dynvo::Camera& camera, const dynvo::Camera& scaled) {
   dynvo::ImageArea out;
   const double sx = static_cast<double>(scaled.width) / camera.width;
   const double sy = static_cast<double>(scaled.height) / camera.height;
@@ -204,10 +203,11 @@ void ReportLastRun(const DynvoRun& last, nlohmann::json* report) {
                                  {"dynamic_ratio_mean", Mean(last.dynamic_ratio)},
                                  {"pose_inliers_mean", Mean(last.inliers)},
                                  {"lost_frames", last.lost_frames}};
-  std::printf("\ndynvo (last run): %.0f features per frame, %.1f removed, dynamic pixels %.2f%%, "
-              "%.0f pose inliers, %d frames lost\n",
-              Mean(last.features_total), Mean(last.features_removed), 100.0 * Mean(last.dynamic_ratio),
-              Mean(last.inliers), last.lost_frames);
+  std::printf(
+      "\ndynvo (last run): %.0f features per frame, %.1f removed, dynamic pixels %.2f%%, "
+      "%.0f pose inliers, %d frames lost\n",
+      Mean(last.features_total), Mean(last.features_removed), 100.0 * Mean(last.dynamic_ratio), Mean(last.inliers),
+      last.lost_frames);
   std::printf("dynvo per-stage split (last run): median_ms mean_ms\n");
   for (const auto& [stage, values] : last.stages) {
     std::printf("  %-14s %8.3f %8.3f\n", stage.c_str(), Median(values), Mean(values));
@@ -247,11 +247,12 @@ int MeasureSpeed(const SpeedArgs& args) {
     AppendRun(&rgbd, RunPeer(rgbd.name, rgbd_odometry, frames, 1));
     AppendRun(&icp, RunPeer(icp.name, icp_odometry, frames, 1));
   }
-  nlohmann::json report = {{"dataset", dataset.name()}, {"frames", frames.size()}, {"runs", args.runs},
-                           {"config", args.config_path.empty() ? "defaults" : args.config_path},
-                           {"overrides", args.overrides}, {"threads", args.threads}, {"scale", args.scale},
-                           {"width", camera.width}, {"height", camera.height},
-                           {"features", {{"num_features", config.features.num_features}}}};
+  nlohmann::json report = {
+      {"dataset", dataset.name()},   {"frames", frames.size()},
+      {"runs", args.runs},           {"config", args.config_path.empty() ? "defaults" : args.config_path},
+      {"overrides", args.overrides}, {"threads", args.threads},
+      {"scale", args.scale},         {"width", camera.width},
+      {"height", camera.height},     {"features", {{"num_features", config.features.num_features}}}};
   std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
               frames.size(), dataset.name().c_str(), camera.width, camera.height, args.runs);
   std::vector<MethodResult> results = {ours};

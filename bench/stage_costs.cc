@@ -108,9 +108,8 @@ dynvo::DynamicMaskResult TimeMaskSteps(const dynvo::RgbdFrame& previous_frame, c
   input.previous_pyramid = previous_pyramid;
   input.current_pyramid = current_pyramid;
   input.image_area = area;
-  return steps.Time("whole detector (rounds)", [&] {
-    return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options);
-  });
+  return steps.Time("whole detector (rounds)",
+                    [&] { return dynvo::DetectDynamicMask(input, config.klt, config.homography, mask_options); });
 }
 
 // Times the depth change of frame i against the frame depth_change.frames back, with the

@@ -21,17 +21,20 @@ int main(int argc, char** argv) {
   double fps = 30, fx = 0, fy = 0, cx = -1, cy = -1;
   unsigned seed = 1;
   bool motion_blur = false, force = false;
-  app.add_option("--scenario", scenario, "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
-                                         "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
-                                         "motion blur, depth a few ms after colour, exposure drift)")
+  app.add_option("--scenario", scenario,
+                 "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
+                 "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
+                 "motion blur, depth a few ms after colour, exposure drift)")
       ->capture_default_str();
   app.add_option("--camera-path", camera_path, "static|xyz|halfsphere|rpy")->capture_default_str();
   app.add_option("--frames", frames, "number of RGB-D frames")->capture_default_str();
   app.add_option("--fps", fps, "frames per second (<= 60)")->capture_default_str();
   app.add_option("--width", width, "image width in pixels")->capture_default_str();
   app.add_option("--height", height, "image height in pixels")->capture_default_str();
-  app.add_option("--intrinsics", intrinsics, "fr1|fr2|fr3|ros: focal lengths and centre (distortion ignored), "
-                                             "scaled to --width/--height")->capture_default_str();
+  app.add_option("--intrinsics", intrinsics,
+                 "fr1|fr2|fr3|ros: focal lengths and centre (distortion ignored), "
+                 "scaled to --width/--height")
+      ->capture_default_str();
   app.add_option("--fx", fx, "focal length x in pixels (overrides --intrinsics)");
   app.add_option("--fy", fy, "focal length y in pixels (overrides --intrinsics)");
   app.add_option("--cx", cx, "principal point x in pixels (overrides --intrinsics)");
@@ -50,12 +53,15 @@ int main(int argc, char** argv) {
     const bool tum = dynvo::IsTumScenario(options.scenario);
     options.motion_blur = motion_blur || tum;
     options.kinect_timing = tum;
-    if (fps > 0) options.exposure_s = std::min(options.exposure_s, 0.5 / fps);  // shutter open half the frame time at most
+    if (fps > 0)
+      options.exposure_s = std::min(options.exposure_s, 0.5 / fps);  // shutter open half the frame time at most
     dynvo::Camera camera = dynvo::TumIntrinsics(intrinsics, "--intrinsics");
     camera.distortion = {0, 0, 0, 0, 0};
     const double sx = width / 640.0, sy = height / 480.0;
-    camera.fx *= sx; camera.cx = (camera.cx + 0.5) * sx - 0.5;
-    camera.fy *= sy; camera.cy = (camera.cy + 0.5) * sy - 0.5;
+    camera.fx *= sx;
+    camera.cx = (camera.cx + 0.5) * sx - 0.5;
+    camera.fy *= sy;
+    camera.cy = (camera.cy + 0.5) * sy - 0.5;
     camera.width = width;
     camera.height = height;
     if (fx > 0) camera.fx = fx;
@@ -68,9 +74,10 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     const dynvo::SyntheticSequenceSummary summary = dynvo::WriteSyntheticSequence(options, out);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("%s: wrote %d frames (%dx%d, scenario %s, camera path %s, seed %u) to %s in %.1f s; "
-                "%d frames show moving objects, mean dynamic pixel ratio %.3f\n",
-                prog, summary.frames, width, height, scenario.c_str(), camera_path.c_str(), seed, out.c_str(),
-                seconds, summary.frames_with_people, summary.mean_dynamic_ratio);
+    std::printf(
+        "%s: wrote %d frames (%dx%d, scenario %s, camera path %s, seed %u) to %s in %.1f s; "
+        "%d frames show moving objects, mean dynamic pixel ratio %.3f\n",
+        prog, summary.frames, width, height, scenario.c_str(), camera_path.c_str(), seed, out.c_str(), seconds,
+        summary.frames_with_people, summary.mean_dynamic_ratio);
   });
 }

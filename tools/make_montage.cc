@@ -89,8 +89,8 @@ int main(int argc, char** argv) {
     std::vector<cv::Mat> rows;
     for (const int index : ParseFrames(frames_text)) {
       if (static_cast<size_t>(index) >= sequence.size())
-        throw dynvo::InputError("--frames: frame " + std::to_string(index) + " is out of range, " + dataset +
-                                " has " + std::to_string(sequence.size()) + " frames");
+        throw dynvo::InputError("--frames: frame " + std::to_string(index) + " is out of range, " + dataset + " has " +
+                                std::to_string(sequence.size()) + " frames");
       const dynvo::RgbdFrame frame = sequence.Load(static_cast<size_t>(index));
       cv::Mat overlay = frame.bgr.clone();
       std::string label = "mask";
@@ -115,9 +115,10 @@ int main(int argc, char** argv) {
       cv::resize(overlay, a, raw.size(), 0, 0, cv::INTER_AREA);
       cv::resize(depth_colour, b, raw.size(), 0, 0, cv::INTER_NEAREST);
       cv::Mat row;
-      cv::hconcat(std::vector<cv::Mat>{Label(raw, "frame " + std::to_string(index) + "  t=" + dynvo::FormatStamp(frame.stamp)), Label(a, label),
-                                       Label(b, "depth 0-6 m")},
-                  row);
+      cv::hconcat(
+          std::vector<cv::Mat>{Label(raw, "frame " + std::to_string(index) + "  t=" + dynvo::FormatStamp(frame.stamp)),
+                               Label(a, label), Label(b, "depth 0-6 m")},
+          row);
       rows.push_back(row);
     }
     cv::Mat montage;

@@ -12,8 +12,7 @@ namespace dynvo {
 
 // Parses `app` and runs `job`. --help prints the usage (exit 0); a usage error or an
 // exception from the job prints one line "<prog>: error: <message>" on stderr (exit 1).
-inline int RunToolMain(const char* prog, CLI::App& app, int argc, char** argv,
-                       const std::function<void()>& job) {
+inline int RunToolMain(const char* prog, CLI::App& app, int argc, char** argv, const std::function<void()>& job) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

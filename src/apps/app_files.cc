@@ -26,8 +26,7 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& ru
 }
 
 void WriteOutputFile(const std::string& path, const std::string& content, bool force) {
-  if (!force && std::filesystem::exists(path))
-    ThrowFileError(path, 0, "already exists (use --force to overwrite)");
+  if (!force && std::filesystem::exists(path)) ThrowFileError(path, 0, "already exists (use --force to overwrite)");
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) ThrowFileError(path, 0, "cannot write file");
   out << content;
@@ -40,8 +39,8 @@ Trajectory ReadNonEmptyTrajectory(const std::string& path) {
   return trajectory;
 }
 
-void PrintMetrics(bool json, nlohmann::json report, const std::string& text,
-                  const std::string& groundtruth_path, const std::string& estimate_path) {
+void PrintMetrics(bool json, nlohmann::json report, const std::string& text, const std::string& groundtruth_path,
+                  const std::string& estimate_path) {
   if (!json) {
     std::cout << text;
     return;

@@ -27,7 +27,7 @@ Trajectory ReadNonEmptyTrajectory(const std::string& path);
 
 // Prints the metrics to stdout: `report` (with the two input paths added) as indented JSON
 // when `json`, else `text`.
-void PrintMetrics(bool json, nlohmann::json report, const std::string& text,
-                  const std::string& groundtruth_path, const std::string& estimate_path);
+void PrintMetrics(bool json, nlohmann::json report, const std::string& text, const std::string& groundtruth_path,
+                  const std::string& estimate_path);
 
 }  // namespace dynvo

@@ -23,11 +23,9 @@ int main(int argc, char** argv) {
   dynvo::AteOptions options;
   app.add_option("groundtruth", gt_path, "Groundtruth trajectory (TUM format)")->required();
   app.add_option("estimate", est_path, "Estimated trajectory (TUM format)")->required();
-  app.add_option("--offset", options.offset,
-                 "Seconds added to estimated stamps before association")
+  app.add_option("--offset", options.offset, "Seconds added to estimated stamps before association")
       ->capture_default_str();
-  app.add_option("--scale", options.scale, "Factor applied to estimated positions")
-      ->capture_default_str();
+  app.add_option("--scale", options.scale, "Factor applied to estimated positions")->capture_default_str();
   app.add_option("--max-difference", options.max_difference,
                  "Largest stamp gap (seconds, exclusive) for associated pairs")
       ->capture_default_str();
@@ -35,8 +33,7 @@ int main(int argc, char** argv) {
   app.add_option("--aligned-out", aligned_out,
                  "Write the whole estimate, scaled and aligned onto the groundtruth, as a TUM "
                  "trajectory");
-  app.add_option("--pairs-out", pairs_out,
-                 "Write every associated pair as CSV (stamp_gt,stamp_est,trans_error_m)");
+  app.add_option("--pairs-out", pairs_out, "Write every associated pair as CSV (stamp_gt,stamp_est,trans_error_m)");
   app.add_flag("--force", force, "Overwrite existing --aligned-out / --pairs-out files");
   return dynvo::RunTool(app, argc, argv, [&] {
     options.Check();
@@ -46,10 +43,8 @@ int main(int argc, char** argv) {
     if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::AtePairsCsv(result), force);
     if (!aligned_out.empty())
       dynvo::WriteOutputFile(
-          aligned_out, dynvo::FormatTrajectory(dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)),
-          force);
-    dynvo::PrintMetrics(json, dynvo::AteJson(result, options), dynvo::FormatAteText(result), gt_path,
-                        est_path);
+          aligned_out, dynvo::FormatTrajectory(dynvo::AlignTrajectory(est, result.gt_from_est, options.scale)), force);
+    dynvo::PrintMetrics(json, dynvo::AteJson(result, options), dynvo::FormatAteText(result), gt_path, est_path);
     return 0;
   });
 }

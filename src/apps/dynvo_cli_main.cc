@@ -33,13 +33,11 @@ std::vector<size_t> ParseFrameList(const std::string& text) {
         if (used != dash) throw std::invalid_argument(item);
         const std::string rest = item.substr(dash + 1);
         const size_t last = std::stoul(rest, &used);
-        if (used != rest.size() || last < first || last - first > 100000)
-          throw std::invalid_argument(item);
+        if (used != rest.size() || last < first || last - first > 100000) throw std::invalid_argument(item);
         for (size_t f = first; f <= last; ++f) frames.push_back(f);
       }
     } catch (const std::exception&) {
-      throw dynvo::InputError("--debug-frames: '" + item +
-                              "' is not a frame number or range (expected e.g. 10,20-25)");
+      throw dynvo::InputError("--debug-frames: '" + item + "' is not a frame number or range (expected e.g. 10,20-25)");
     }
     if (comma == std::string::npos) break;
     pos = comma + 1;
@@ -57,8 +55,8 @@ void PrintConfigKeys(bool markdown) {
     // "key (type, default V): help"
     const size_t open = line.find(" (");
     const size_t close = line.find("): ");
-    std::printf("| `%s` | %s | %s |\n", line.substr(0, open).c_str(),
-                line.substr(open + 2, close - open - 2).c_str(), line.substr(close + 3).c_str());
+    std::printf("| `%s` | %s | %s |\n", line.substr(0, open).c_str(), line.substr(open + 2, close - open - 2).c_str(),
+                line.substr(close + 3).c_str());
   }
 }
 
@@ -71,9 +69,10 @@ int main(int argc, char** argv) {
   dynvo::RunRequest request;
   std::string debug_frames;
   CLI::App* run = app.add_subcommand("run", "run the odometry on a TUM RGB-D sequence folder");
-  run->add_option("--dataset", request.dataset, "TUM sequence folder (rgb.txt, depth.txt, ...)")
-      ->required();
-  run->add_option("--config", request.config_path, "JSON config (default: the built-in recommended config, = configs/dynvo.json; configs/paper.json is the paper's method)");
+  run->add_option("--dataset", request.dataset, "TUM sequence folder (rgb.txt, depth.txt, ...)")->required();
+  run->add_option("--config", request.config_path,
+                  "JSON config (default: the built-in recommended config, = configs/dynvo.json; configs/paper.json is "
+                  "the paper's method)");
   run->add_option("--out", request.out_dir, "output folder (created when missing)")->required();
   run->add_option("--set", request.overrides, "override one config key: key=value (repeatable)")
       ->allow_extra_args(false);
@@ -104,7 +103,8 @@ int main(int argc, char** argv) {
     const nlohmann::json report = dynvo::RunOdometry(request);
     if (!request.quiet) {
       const auto& t = report["time"];
-      std::fprintf(stderr, "dynvo-cli: %zu frames, processing median %.2f ms/frame, %.1f frames/s end to end; outputs in %s\n",
+      std::fprintf(stderr,
+                   "dynvo-cli: %zu frames, processing median %.2f ms/frame, %.1f frames/s end to end; outputs in %s\n",
                    report["counts"]["frames"].get<size_t>(),
                    t["processing_ms"].is_null() ? 0.0 : t["processing_ms"]["median"].get<double>(),
                    t["end_to_end_fps"].get<double>(), request.out_dir.c_str());

@@ -34,11 +34,9 @@ int main(int argc, char** argv) {
   app.add_flag("--all-pairs", all_pairs,
                "Compare every ordered pose pair (i, j) instead of a fixed delta: global "
                "consistency, not drift per second (the script samples these at random)");
-  app.add_option("--offset", options.offset,
-                 "Seconds added to estimated stamps before the groundtruth lookup")
+  app.add_option("--offset", options.offset, "Seconds added to estimated stamps before the groundtruth lookup")
       ->capture_default_str();
-  app.add_option("--scale", options.scale, "Factor applied to estimated translations")
-      ->capture_default_str();
+  app.add_option("--scale", options.scale, "Factor applied to estimated translations")->capture_default_str();
   app.add_option("--closest", closest,
                  "How the 'closest' index and stamp are found: benchmark (the script's binary "
                  "search, reproduces published numbers) or nearest (true nearest)")
@@ -52,15 +50,13 @@ int main(int argc, char** argv) {
   return dynvo::RunTool(app, argc, argv, [&] {
     options.fixed_delta = !all_pairs;
     options.unit = dynvo::ParseDeltaUnit(delta_unit);
-    options.closest =
-        closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
+    options.closest = closest == "nearest" ? dynvo::ClosestLookup::kNearest : dynvo::ClosestLookup::kBenchmark;
     options.Check();
     const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
     const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
     const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
     if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
-    dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path,
-                        est_path);
+    dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path, est_path);
     return 0;
   });
 }

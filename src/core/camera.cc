@@ -10,13 +10,10 @@ bool Camera::HasDistortion() const {
   return false;
 }
 
-cv::Mat Camera::K() const {
-  return (cv::Mat_<double>(3, 3) << fx, 0, cx, 0, fy, cy, 0, 0, 1);
-}
+cv::Mat Camera::K() const { return (cv::Mat_<double>(3, 3) << fx, 0, cx, 0, fy, cy, 0, 0, 1); }
 
 cv::Mat Camera::DistCoeffs() const {
-  return (cv::Mat_<double>(1, 5) << distortion[0], distortion[1], distortion[2],
-          distortion[3], distortion[4]);
+  return (cv::Mat_<double>(1, 5) << distortion[0], distortion[1], distortion[2], distortion[3], distortion[4]);
 }
 
 Eigen::Vector2d Camera::Project(const Eigen::Vector3d& p) const {
@@ -28,15 +25,12 @@ Eigen::Vector3d Camera::Backproject(const Eigen::Vector2d& px, double depth) con
 }
 
 bool Camera::InImage(const Eigen::Vector2d& px, double margin) const {
-  return px.x() >= margin && px.y() >= margin && px.x() <= width - 1 - margin &&
-         px.y() <= height - 1 - margin;
+  return px.x() >= margin && px.y() >= margin && px.x() <= width - 1 - margin && px.y() <= height - 1 - margin;
 }
 
 void Camera::Check(const std::string& where) const {
-  if (width <= 0 || height <= 0)
-    throw InputError(where + ": camera width and height must be positive");
-  if (!(fx > 0) || !(fy > 0))
-    throw InputError(where + ": camera fx and fy must be positive");
+  if (width <= 0 || height <= 0) throw InputError(where + ": camera width and height must be positive");
+  if (!(fx > 0) || !(fy > 0)) throw InputError(where + ": camera fx and fy must be positive");
 }
 
 }  // namespace dynvo

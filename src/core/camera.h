@@ -10,10 +10,10 @@
 namespace dynvo {
 
 struct Camera {
-  int width = 640;   // pixels
-  int height = 480;  // pixels
+  int width = 640;                                        // pixels
+  int height = 480;                                       // pixels
   double fx = 525.0, fy = 525.0, cx = 319.5, cy = 239.5;  // pixels
-  std::array<double, 5> distortion{0, 0, 0, 0, 0};      // k1 k2 p1 p2 k3
+  std::array<double, 5> distortion{0, 0, 0, 0, 0};        // k1 k2 p1 p2 k3
 
   // True when any distortion coefficient is non-zero.
   bool HasDistortion() const;

@@ -8,8 +8,7 @@
 namespace dynvo {
 namespace {
 
-[[noreturn]] void TypeError(const std::string& where, const std::string& type,
-                            const nlohmann::json& value) {
+[[noreturn]] void TypeError(const std::string& where, const std::string& type, const nlohmann::json& value) {
   throw InputError(where + " expects " + type + ", got " + value.dump());
 }
 
@@ -52,8 +51,7 @@ void ConfigRegistry::Bind(const std::string& key, unsigned* field, const std::st
   Add(key, {"non-negative integer", help, [field] { return nlohmann::json(*field); },
             [field](const nlohmann::json& v, const std::string& where) {
               const long long x = IntegerValue(v, where);
-              if (x < 0 || x > std::numeric_limits<unsigned>::max())
-                TypeError(where, "a non-negative integer", v);
+              if (x < 0 || x > std::numeric_limits<unsigned>::max()) TypeError(where, "a non-negative integer", v);
               *field = static_cast<unsigned>(x);
             }});
 }
@@ -83,8 +81,7 @@ void ConfigRegistry::Bind(const std::string& key, std::string* field, const std:
 }
 
 void ConfigRegistry::BindChoice(const std::string& key, std::vector<std::string> choices,
-                                std::function<std::string()> get,
-                                std::function<void(const std::string&)> set,
+                                std::function<std::string()> get, std::function<void(const std::string&)> set,
                                 const std::string& help) {
   std::string type = "one of";
   for (size_t i = 0; i < choices.size(); ++i) type += (i ? ", \"" : " \"") + choices[i] + "\"";
@@ -98,12 +95,9 @@ void ConfigRegistry::BindChoice(const std::string& key, std::vector<std::string>
             }});
 }
 
-void ConfigRegistry::NoteMoved(const std::string& old_key, const std::string& note) {
-  moved_[old_key] = note;
-}
+void ConfigRegistry::NoteMoved(const std::string& old_key, const std::string& note) { moved_[old_key] = note; }
 
-void ConfigRegistry::ApplyValue(const std::string& key, const nlohmann::json& value,
-                                const std::string& source) {
+void ConfigRegistry::ApplyValue(const std::string& key, const nlohmann::json& value, const std::string& source) {
   const auto it = entries_.find(key);
   if (it == entries_.end()) {
     const auto moved = moved_.find(key);
@@ -128,8 +122,7 @@ void ConfigRegistry::Apply(const nlohmann::json& config, const std::string& sour
 
 void ConfigRegistry::ApplyOverride(const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InputError("--set '" + assignment + "': expected key=value");
+  if (eq == std::string::npos || eq == 0) throw InputError("--set '" + assignment + "': expected key=value");
   const std::string key = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);

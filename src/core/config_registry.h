@@ -22,9 +22,8 @@ class ConfigRegistry {
   void Bind(const std::string& key, bool* field, const std::string& help);
   void Bind(const std::string& key, std::string* field, const std::string& help);
   // An enum-like field stored by `set` after parsing a string, read back with `get`.
-  void BindChoice(const std::string& key, std::vector<std::string> choices,
-                  std::function<std::string()> get, std::function<void(const std::string&)> set,
-                  const std::string& help);
+  void BindChoice(const std::string& key, std::vector<std::string> choices, std::function<std::string()> get,
+                  std::function<void(const std::string&)> set, const std::string& help);
 
   // A key that is no longer bound: applying it fails with "key 'OLD_KEY' " + `note` (e.g. "is
   // now 'a.b'", "was retired: ...") instead of "unknown key".

@@ -23,8 +23,8 @@ std::string FileMessage(const std::string& file, int line, const std::string& me
 // Unless `ok`, throws InputError("<section>.<field> must be <rule>, got <value>"): an option
 // out of range, named by its config key.
 template <typename T>
-void RequireOption(bool ok, const std::string& section, const std::string& field,
-                   const std::string& rule, const T& value) {
+void RequireOption(bool ok, const std::string& section, const std::string& field, const std::string& rule,
+                   const T& value) {
   if (ok) return;
   std::ostringstream message;
   message << section << "." << field << " must be " << rule << ", got " << value;

@@ -16,11 +16,9 @@ using nlohmann::json;
 double Number(const json& root, const std::string& key, const std::string& path, bool positive) {
   if (!root.contains(key)) ThrowFileError(path, 0, "missing key '" + key + "'");
   const json& value = root.at(key);
-  if (!value.is_number() || !std::isfinite(value.get<double>()) ||
-      (positive && !(value.get<double>() > 0)))
-    ThrowFileError(path, 0,
-                   "key '" + key + "' must be a " + (positive ? "positive" : "finite") +
-                       " number, got " + value.dump());
+  if (!value.is_number() || !std::isfinite(value.get<double>()) || (positive && !(value.get<double>() > 0)))
+    ThrowFileError(
+        path, 0, "key '" + key + "' must be a " + (positive ? "positive" : "finite") + " number, got " + value.dump());
   return value.get<double>();
 }
 
@@ -43,15 +41,14 @@ CameraFile ReadCameraFile(const std::string& path) {
     ThrowFileError(path, 0, std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) ThrowFileError(path, 0, "expected a JSON object");
-  static const char* const kKeys[] = {"width", "height", "fx",         "fy",
-                                      "cx",    "cy",     "distortion", "depth_factor"};
+  static const char* const kKeys[] = {"width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor"};
   for (const auto& item : root.items()) {
     bool known = false;
     for (const char* key : kKeys) known = known || item.key() == key;
     if (!known)
-      ThrowFileError(path, 0,
-                     "unknown key '" + item.key() +
-                         "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor)");
+      ThrowFileError(
+          path, 0,
+          "unknown key '" + item.key() + "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor)");
   }
 
   CameraFile file;
@@ -69,17 +66,13 @@ CameraFile ReadCameraFile(const std::string& path) {
       ok = d[k].is_number() && std::isfinite(d[k].get<double>());
       if (ok) camera.distortion[k] = d[k].get<double>();
     }
-    if (!ok)
-      ThrowFileError(
-          path, 0,
-          "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + d.dump());
+    if (!ok) ThrowFileError(path, 0, "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + d.dump());
   }
   if (root.contains("depth_factor")) file.depth_factor = Number(root, "depth_factor", path, true);
   return file;
 }
 
-void WriteCameraFile(const std::string& path, const Camera& camera,
-                     std::optional<double> depth_factor) {
+void WriteCameraFile(const std::string& path, const Camera& camera, std::optional<double> depth_factor) {
   json root = {{"width", camera.width},
                {"height", camera.height},
                {"fx", camera.fx},

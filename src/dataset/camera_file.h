@@ -24,7 +24,6 @@ CameraFile ReadCameraFile(const std::string& path);
 
 // Writes camera.json in the format above (depth_factor only when given), replacing the
 // file. Throws InputError when it cannot be written.
-void WriteCameraFile(const std::string& path, const Camera& camera,
-                     std::optional<double> depth_factor = std::nullopt);
+void WriteCameraFile(const std::string& path, const Camera& camera, std::optional<double> depth_factor = std::nullopt);
 
 }  // namespace dynvo

@@ -9,18 +9,15 @@ std::vector<ImageListEntry> ParseImageList(const std::string& text, const std::s
   std::vector<ImageListEntry> entries;
   for (const TextLine& line : SplitDataLines(text)) {
     if (line.fields.size() != 2)
-      ThrowFileError(
-          source, line.number,
-          "expected 2 columns 'timestamp filename', got " + std::to_string(line.fields.size()));
+      ThrowFileError(source, line.number,
+                     "expected 2 columns 'timestamp filename', got " + std::to_string(line.fields.size()));
     ImageListEntry entry;
     if (!ParseDouble(line.fields[0], &entry.stamp))
-      ThrowFileError(source, line.number,
-                     "timestamp is not a finite number: '" + line.fields[0] + "'");
+      ThrowFileError(source, line.number, "timestamp is not a finite number: '" + line.fields[0] + "'");
     if (!entries.empty() && !(entry.stamp > entries.back().stamp))
       ThrowFileError(source, line.number,
                      "timestamps must strictly increase, got " + line.fields[0] + " after " +
-                         std::to_string(entries.back().stamp) + " (line " +
-                         std::to_string(entries.back().line) + ")");
+                         std::to_string(entries.back().stamp) + " (line " + std::to_string(entries.back().line) + ")");
     entry.path = line.fields[1];
     entry.line = line.number;
     entries.push_back(std::move(entry));

@@ -7,14 +7,12 @@
 
 namespace dynvo {
 
-std::vector<std::pair<size_t, size_t>> MatchStamps(const std::vector<double>& first,
-                                                   const std::vector<double>& second,
+std::vector<std::pair<size_t, size_t>> MatchStamps(const std::vector<double>& first, const std::vector<double>& second,
                                                    double max_difference) {
   // second's indices by stamp, so that each first stamp finds its window by binary search.
   std::vector<size_t> order(second.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return second[a] < second[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return second[a] < second[b]; });
 
   struct Candidate {
     double gap;

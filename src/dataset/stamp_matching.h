@@ -12,8 +12,7 @@ namespace dynvo {
 
 // One-to-one pairs (index in `first`, index in `second`) chosen as associate.py chooses them
 // (strict `<` at max_difference), sorted by the first index. Stamps need not be sorted.
-std::vector<std::pair<size_t, size_t>> MatchStamps(const std::vector<double>& first,
-                                                   const std::vector<double>& second,
+std::vector<std::pair<size_t, size_t>> MatchStamps(const std::vector<double>& first, const std::vector<double>& second,
                                                    double max_difference);
 
 }  // namespace dynvo

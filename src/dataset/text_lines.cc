@@ -1,7 +1,7 @@
 #include "dataset/text_lines.h"
 
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>

@@ -14,19 +14,16 @@ Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
   for (const TextLine& line : SplitDataLines(text)) {
     if (line.fields.size() != 8)
       ThrowFileError(source, line.number,
-                     "expected 8 columns 'timestamp tx ty tz qx qy qz qw', got " +
-                         std::to_string(line.fields.size()));
+                     "expected 8 columns 'timestamp tx ty tz qx qy qz qw', got " + std::to_string(line.fields.size()));
     double v[8];
     for (int i = 0; i < 8; ++i)
       if (!ParseDouble(line.fields[i], &v[i]))
         ThrowFileError(source, line.number,
-                       "column " + std::to_string(i + 1) + " is not a finite number: '" +
-                           line.fields[i] + "'");
+                       "column " + std::to_string(i + 1) + " is not a finite number: '" + line.fields[i] + "'");
     const double qnorm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
     if (qnorm < 1e-9) ThrowFileError(source, line.number, "quaternion has zero length");
     if (!trajectory.empty() && v[0] < trajectory.back().stamp)
-      ThrowFileError(source, line.number,
-                     "timestamps must increase, got " + line.fields[0] + " after a larger one");
+      ThrowFileError(source, line.number, "timestamps must increase, got " + line.fields[0] + " after a larger one");
     const StampedPose pose{v[0], PoseFromTum({v[1], v[2], v[3]}, v[4], v[5], v[6], v[7])};
     // A repeated stamp (real TUM files have them: fr2_desk repeats 1311868229.5760) keeps
     // its last line, as the TUM scripts' dict does.
@@ -38,9 +35,7 @@ Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
   return trajectory;
 }
 
-Trajectory ReadTrajectory(const std::string& path) {
-  return ParseTrajectory(ReadTextFile(path), path);
-}
+Trajectory ReadTrajectory(const std::string& path) { return ParseTrajectory(ReadTextFile(path), path); }
 
 std::string FormatTrajectory(const Trajectory& trajectory) {
   std::string out;
@@ -48,8 +43,8 @@ std::string FormatTrajectory(const Trajectory& trajectory) {
   for (const StampedPose& p : trajectory) {
     const Eigen::Vector3d& t = p.world_from_camera.translation();
     const Eigen::Quaterniond q = PoseQuaternion(p.world_from_camera);
-    std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f\n", p.stamp,
-                  t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f\n", p.stamp, t.x(), t.y(), t.z(),
+                  q.x(), q.y(), q.z(), q.w());
     out += buffer;
   }
   return out;

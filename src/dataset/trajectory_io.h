@@ -11,7 +11,7 @@
 namespace dynvo {
 
 struct StampedPose {
-  double stamp = 0.0;                 // seconds
+  double stamp = 0.0;  // seconds
   Pose world_from_camera = Pose::Identity();
 };
 

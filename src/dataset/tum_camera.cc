@@ -20,10 +20,8 @@ Camera MakeCamera(double fx, double fy, double cx, double cy, std::array<double,
 Camera TumCameraForSequence(const std::string& folder_name, bool* recognised) {
   const auto has = [&](const char* key) { return folder_name.find(key) != std::string::npos; };
   if (recognised) *recognised = true;
-  if (has("freiburg1"))
-    return MakeCamera(517.3, 516.5, 318.6, 255.3, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633});
-  if (has("freiburg2"))
-    return MakeCamera(520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.0001, 0.9172});
+  if (has("freiburg1")) return MakeCamera(517.3, 516.5, 318.6, 255.3, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633});
+  if (has("freiburg2")) return MakeCamera(520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.0001, 0.9172});
   if (has("freiburg3")) return MakeCamera(535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0});
   if (recognised) *recognised = false;
   return MakeCamera(525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0});

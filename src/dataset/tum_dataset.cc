@@ -56,11 +56,9 @@ std::string TypeName(const cv::Mat& image) {
 
 void TumDatasetOptions::Check() const {
   if (!std::isfinite(max_time_difference) || !(max_time_difference > 0))
-    throw InputError("dataset.max_time_difference must be > 0 (seconds), got " +
-                     Number(max_time_difference));
+    throw InputError("dataset.max_time_difference must be > 0 (seconds), got " + Number(max_time_difference));
   if (!std::isfinite(depth_factor) || !(depth_factor > 0))
-    throw InputError("dataset.depth_factor must be > 0 (PNG value per metre), got " +
-                     Number(depth_factor));
+    throw InputError("dataset.depth_factor must be > 0 (PNG value per metre), got " + Number(depth_factor));
   if (camera) camera->Check("dataset.camera");
 }
 
@@ -95,8 +93,8 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
     camera_.distortion = {0, 0, 0, 0, 0};
     const cv::Size size(raw_camera_.width, raw_camera_.height);
     cv::Mat map_x, map_y;
-    cv::initUndistortRectifyMap(raw_camera_.K(), raw_camera_.DistCoeffs(), cv::Mat(),
-                                raw_camera_.K(), size, CV_32FC1, map_x, map_y);
+    cv::initUndistortRectifyMap(raw_camera_.K(), raw_camera_.DistCoeffs(), cv::Mat(), raw_camera_.K(), size, CV_32FC1,
+                                map_x, map_y);
     // Fixed-point maps remap fastest; the nearest one is rounded (not truncated) so that
     // depth and masks are sampled at the closest source pixel.
     cv::convertMaps(map_x, map_y, linear_map1_, linear_map2_, CV_16SC2, false);
@@ -117,9 +115,8 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
     frames_.push_back({r, d, -1});
   if (frames_.empty())
     ThrowFileError(rgb_list_, 0,
-                   "no RGB frame (of " + std::to_string(rgb_.size()) + ") has a depth frame in " +
-                       depth_list_ + " closer than dataset.max_time_difference = " +
-                       Number(options_.max_time_difference) + " s");
+                   "no RGB frame (of " + std::to_string(rgb_.size()) + ") has a depth frame in " + depth_list_ +
+                       " closer than dataset.max_time_difference = " + Number(options_.max_time_difference) + " s");
   unmatched_rgb_ = rgb_.size() - frames_.size();
 
   const std::string groundtruth = (fs::path(folder_) / "groundtruth.txt").string();
@@ -133,9 +130,8 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
     masks_ = ReadImageList(masks_list_);
     for (FramePaths& frame : frames_) {
       const double stamp = rgb_[frame.rgb].stamp;
-      const auto it =
-          std::lower_bound(masks_.begin(), masks_.end(), stamp - kMaskStampTolerance,
-                           [](const ImageListEntry& e, double value) { return e.stamp < value; });
+      const auto it = std::lower_bound(masks_.begin(), masks_.end(), stamp - kMaskStampTolerance,
+                                       [](const ImageListEntry& e, double value) { return e.stamp < value; });
       if (it != masks_.end() && std::abs(it->stamp - stamp) <= kMaskStampTolerance)
         frame.mask = static_cast<int>(it - masks_.begin());
     }
@@ -174,9 +170,8 @@ cv::Mat TumDataset::ReadPng(const ImageListEntry& entry, const std::string& list
   if (image.empty()) ThrowFileError(path, 0, "cannot decode image" + where);
   if (image.cols != raw_camera_.width || image.rows != raw_camera_.height)
     ThrowFileError(path, 0,
-                   "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                       ", the camera is " + std::to_string(raw_camera_.width) + "x" +
-                       std::to_string(raw_camera_.height) + where);
+                   "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", the camera is " +
+                       std::to_string(raw_camera_.width) + "x" + std::to_string(raw_camera_.height) + where);
   return image;
 }
 
@@ -191,9 +186,8 @@ RgbdFrame TumDataset::Load(size_t i) const {
 
   cv::Mat rgb = ReadPng(rgb_entry, rgb_list_);
   if (rgb.depth() != CV_8U || (rgb.channels() != 1 && rgb.channels() != 3 && rgb.channels() != 4))
-    ThrowFileError(
-        (fs::path(folder_) / rgb_entry.path).string(), 0,
-        "RGB image must be 8-bit with 3 channels (1 or 4 accepted), got " + TypeName(rgb));
+    ThrowFileError((fs::path(folder_) / rgb_entry.path).string(), 0,
+                   "RGB image must be 8-bit with 3 channels (1 or 4 accepted), got " + TypeName(rgb));
   if (rgb.channels() == 1) cv::cvtColor(rgb, rgb, cv::COLOR_GRAY2BGR);
   if (rgb.channels() == 4) cv::cvtColor(rgb, rgb, cv::COLOR_BGRA2BGR);
 
@@ -203,11 +197,10 @@ RgbdFrame TumDataset::Load(size_t i) const {
                    "depth image must be 16-bit 1-channel, got " + TypeName(depth));
 
   if (remap_) {
-    cv::remap(rgb, frame.bgr, linear_map1_, linear_map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
-              cv::Scalar::all(0));
+    cv::remap(rgb, frame.bgr, linear_map1_, linear_map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar::all(0));
     cv::Mat undistorted_depth;
-    cv::remap(depth, undistorted_depth, nearest_map_, cv::noArray(), cv::INTER_NEAREST,
-              cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    cv::remap(depth, undistorted_depth, nearest_map_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT,
+              cv::Scalar::all(0));
     depth = undistorted_depth;
   } else {
     frame.bgr = rgb;
@@ -222,19 +215,16 @@ cv::Mat TumDataset::LoadMask(size_t i) const {
   if (!has_masks_) ThrowFileError(masks_list_, 0, "missing file: this sequence has no masks");
   if (paths.mask < 0)
     ThrowFileError(masks_list_, 0,
-                   "no mask entry with the stamp of frame " + std::to_string(i) + " (" + rgb_list_ +
-                       ":" + std::to_string(rgb_[paths.rgb].line) + ", " +
-                       Stamp(rgb_[paths.rgb].stamp) + ")");
+                   "no mask entry with the stamp of frame " + std::to_string(i) + " (" + rgb_list_ + ":" +
+                       std::to_string(rgb_[paths.rgb].line) + ", " + Stamp(rgb_[paths.rgb].stamp) + ")");
   const ImageListEntry& entry = masks_[static_cast<size_t>(paths.mask)];
   cv::Mat mask = ReadPng(entry, masks_list_);
   if (mask.type() != CV_8UC1)
-    ThrowFileError((fs::path(folder_) / entry.path).string(), 0,
-                   "mask must be 8-bit 1-channel, got " + TypeName(mask));
+    ThrowFileError((fs::path(folder_) / entry.path).string(), 0, "mask must be 8-bit 1-channel, got " + TypeName(mask));
   cv::threshold(mask, mask, 0, 255, cv::THRESH_BINARY);
   if (!remap_) return mask;
   cv::Mat undistorted;
-  cv::remap(mask, undistorted, nearest_map_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT,
-            cv::Scalar::all(0));
+  cv::remap(mask, undistorted, nearest_map_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar::all(0));
   return undistorted;
 }
 

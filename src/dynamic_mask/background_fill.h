@@ -24,7 +24,6 @@ constexpr int kBackgroundFillMarginPx = 1;
 // returns `current_gray` itself; an empty `previous_background` a copy of it. Only the grown mask's
 // bounding box is warped (the same pixels as a warp of the whole frame).
 cv::Mat FillMaskFromBackground(const cv::Mat& current_gray, const cv::Mat& mask, const cv::Mat& previous_background,
-                               const Eigen::Matrix3d& current_from_previous, int margin_px,
-                               const ImageArea& area = {});
+                               const Eigen::Matrix3d& current_from_previous, int margin_px, const ImageArea& area = {});
 
 }  // namespace dynvo

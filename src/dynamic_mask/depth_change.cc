@@ -15,18 +15,17 @@ namespace dynvo {
 void DepthChangeOptions::Check() const {
   const std::string section = "depth_change";
   RequireOption(frames >= 1 && frames <= 10, section, "frames", "in [1, 10]", frames);
-  RequireOption(std::isfinite(threshold) && threshold > 0.0 && threshold <= 1.0, section,
-                "threshold", "in (0, 1]", threshold);
+  RequireOption(std::isfinite(threshold) && threshold > 0.0 && threshold <= 1.0, section, "threshold", "in (0, 1]",
+                threshold);
   RequireOption(open_px >= 0 && open_px <= 31, section, "open_px", "in [0, 31]", open_px);
-  RequireOption(std::isfinite(max_share) && max_share > 0.0 && max_share <= 1.0, section,
-                "max_share", "in (0, 1]", max_share);
+  RequireOption(std::isfinite(max_share) && max_share > 0.0 && max_share <= 1.0, section, "max_share", "in (0, 1]",
+                max_share);
 }
 
 cv::Mat DepthChangeMask(const cv::Mat& depth, const cv::Mat& earlier_depth, const Camera& camera,
                         const Pose& earlier_from_current, const DepthChangeOptions& options) {
   options.Check();
-  if (depth.type() != CV_32FC1 || earlier_depth.type() != CV_32FC1 ||
-      depth.size() != earlier_depth.size())
+  if (depth.type() != CV_32FC1 || earlier_depth.type() != CV_32FC1 || depth.size() != earlier_depth.size())
     throw InputError("DepthChangeMask: both depth images must be CV_32FC1 of the same size");
   // The point behind pixel (u, v) at depth d, in the earlier frame, is d * (row_ray[v] +
   // column_ray[u]) + translation: the rotated bearing split into its row and column parts.

@@ -68,9 +68,9 @@ void CheckGray(const cv::Mat& image, const cv::Size& size, const char* what) {
 // Largest distance between where two homographies send the corners of an image of `size`, px.
 double CornerChange(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, const cv::Size& size) {
   double largest = 0.0;
-  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(size.width - 1, 0),
-                                       Eigen::Vector2d(0, size.height - 1),
-                                       Eigen::Vector2d(size.width - 1, size.height - 1)}) {
+  for (const Eigen::Vector2d& corner :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(size.width - 1, 0), Eigen::Vector2d(0, size.height - 1),
+        Eigen::Vector2d(size.width - 1, size.height - 1)}) {
     const Eigen::Vector3d pa = a * corner.homogeneous(), pb = b * corner.homogeneous();
     largest = std::max(largest, (pa.hnormalized() - pb.hnormalized()).norm());
   }
@@ -152,7 +152,8 @@ DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions&
   TrackingPyramid built_previous, built_current, built_next;
   const TrackingPyramid& current_pyramid = PyramidOf(input.current_gray, input.current_pyramid, klt, &built_current);
   const TrackingPyramid& previous_pyramid =
-      tracks_given ? input.previous_pyramid : PyramidOf(input.previous_gray, input.previous_pyramid, klt, &built_previous);
+      tracks_given ? input.previous_pyramid
+                   : PyramidOf(input.previous_gray, input.previous_pyramid, klt, &built_previous);
   const std::vector<cv::Point2f> corners =
       (!tracks_given || s.use_next) ? DetectCorners(current_pyramid, klt) : std::vector<cv::Point2f>();
   s.forward_tracks =
@@ -249,7 +250,8 @@ RoundEnd DetectRound(int round, const DetectionSetup& s, const HomographyOptions
   const cv::Mat backward_mask = BackwardMask(round, h_forward, s, homography, options, state, &backward_failure);
   if (forward_done.valid()) forward_done.Get();
 
-  const cv::Mat fused = ToFullSize(backward_mask.empty() ? state->forward.binary : (state->forward.binary | backward_mask), s.size);
+  const cv::Mat fused =
+      ToFullSize(backward_mask.empty() ? state->forward.binary : (state->forward.binary | backward_mask), s.size);
   result->ok = true;
   result->mask = fused;
   result->forward_mask = ToFullSize(state->forward.binary, s.size);
@@ -273,8 +275,9 @@ RoundEnd DetectRound(int round, const DetectionSetup& s, const HomographyOptions
 
 }  // namespace
 
-DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt, const HomographyOptions& homography,
-                                    const DynamicMaskOptions& options, Executor* executor) {
+DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOptions& klt,
+                                    const HomographyOptions& homography, const DynamicMaskOptions& options,
+                                    Executor* executor) {
   klt.Check();
   homography.Check();
   options.Check();
@@ -282,7 +285,8 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
   const cv::Size size = input.current_gray.size();
   CheckGray(input.current_gray, size, "current frame");
   CheckGray(input.previous_gray, size, "previous frame");
-  if (options.backward == BackwardMode::kTriplet && !input.next_gray.empty()) CheckGray(input.next_gray, size, "next frame");
+  if (options.backward == BackwardMode::kTriplet && !input.next_gray.empty())
+    CheckGray(input.next_gray, size, "next frame");
 
   DynamicMaskResult result;
   result.mask = cv::Mat::zeros(size, CV_8UC1);

@@ -56,26 +56,34 @@ BackwardMode ParseBackwardMode(const std::string& text, const std::string& key) 
 
 std::string ToString(ThresholdMethod method) {
   switch (method) {
-    case ThresholdMethod::kOtsu: return "otsu";
-    case ThresholdMethod::kFixed: return "fixed";
+    case ThresholdMethod::kOtsu:
+      return "otsu";
+    case ThresholdMethod::kFixed:
+      return "fixed";
   }
   return "?";
 }
 
 std::string ToString(MorphShape shape) {
   switch (shape) {
-    case MorphShape::kRect: return "rect";
-    case MorphShape::kEllipse: return "ellipse";
-    case MorphShape::kCross: return "cross";
+    case MorphShape::kRect:
+      return "rect";
+    case MorphShape::kEllipse:
+      return "ellipse";
+    case MorphShape::kCross:
+      return "cross";
   }
   return "?";
 }
 
 std::string ToString(BackwardMode mode) {
   switch (mode) {
-    case BackwardMode::kNone: return "none";
-    case BackwardMode::kReversePair: return "reverse_pair";
-    case BackwardMode::kTriplet: return "triplet";
+    case BackwardMode::kNone:
+      return "none";
+    case BackwardMode::kReversePair:
+      return "reverse_pair";
+    case BackwardMode::kTriplet:
+      return "triplet";
   }
   return "?";
 }

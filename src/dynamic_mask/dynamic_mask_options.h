@@ -19,25 +19,26 @@ enum class BackwardMode { kNone, kReversePair, kTriplet };
 
 struct DynamicMaskOptions {
   ThresholdMethod threshold = ThresholdMethod::kOtsu;  // Otsu (paper eq. 2) or fixed
-  int fixed_threshold = 30;          // grey levels, used with kFixed; dynamic when difference > threshold
-  int min_otsu_threshold = 0;        // grey levels; the Otsu threshold is raised to at least this (0 = paper)
-  int erode_kernel_size = 4;         // px, side of the erosion element (0 = no erosion)
+  int fixed_threshold = 30;    // grey levels, used with kFixed; dynamic when difference > threshold
+  int min_otsu_threshold = 0;  // grey levels; the Otsu threshold is raised to at least this (0 = paper)
+  int erode_kernel_size = 4;   // px, side of the erosion element (0 = no erosion)
   MorphShape erode_shape = MorphShape::kRect;
-  int erode_iterations = 2;          // erosions applied
-  int dilate_kernel_size = 16;       // px, side of the dilation element (0 = no dilation)
+  int erode_iterations = 2;     // erosions applied
+  int dilate_kernel_size = 16;  // px, side of the dilation element (0 = no dilation)
   MorphShape dilate_shape = MorphShape::kRect;
-  int dilate_iterations = 1;         // dilations applied
+  int dilate_iterations = 1;                           // dilations applied
   BackwardMode backward = BackwardMode::kReversePair;  // second direction, see BackwardMode
-  int difference_level = 0;          // pyramid level the differencing runs on (0 = full size, the paper; 1 = half
-                                     // size, ~4x cheaper); kernel sizes stay in full-size px, masks are full size
-  int rounds = 2;                    // mask / homography re-estimation rounds (>= 1)
-  double rounds_min_change_px = 0.5; // px; a round whose H moves no image corner by more than this
-                                     // (vs the previous round) ends the rounds, keeping that mask (0 = run all)
+  int difference_level = 0;           // pyramid level the differencing runs on (0 = full size, the paper; 1 = half
+                                      // size, ~4x cheaper); kernel sizes stay in full-size px, masks are full size
+  int rounds = 2;                     // mask / homography re-estimation rounds (>= 1)
+  double rounds_min_change_px = 0.5;  // px; a round whose H moves no image corner by more than this
+                                      // (vs the previous round) ends the rounds, keeping that mask (0 = run all)
   // Throws InputError naming the key ("dynamic_mask.<field>") of the first bad value.
   void Check() const;
 };
 
-// The config keys of the differencing (section "dynamic_mask"): threshold, morphology, backward detection, rounds, level.
+// The config keys of the differencing (section "dynamic_mask"): threshold, morphology, backward detection, rounds,
+// level.
 void BindConfigKeys(const std::string& prefix, DynamicMaskOptions* options, ConfigRegistry* registry);
 
 // Parse helpers for the config: "otsu"/"fixed", "rect"/"ellipse"/"cross", "none"/"reverse_pair"/"triplet";

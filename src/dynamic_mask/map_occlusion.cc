@@ -59,8 +59,8 @@ cv::Mat MapOcclusionMask(const cv::Mat& depth, const std::vector<Eigen::Vector3d
   for (int gy = 0; gy < grid_rows; ++gy)
     for (int gx = 0; gx < grid_cols; ++gx)
       if (count.at<float>(gy, gx) >= static_cast<float>(options.min_points)) {
-        bar.at<float>(gy, gx) = static_cast<float>(nearest.at<float>(gy, gx) * (1.0 - options.relative_margin) -
-                                                   options.absolute_margin_m);
+        bar.at<float>(gy, gx) =
+            static_cast<float>(nearest.at<float>(gy, gx) * (1.0 - options.relative_margin) - options.absolute_margin_m);
         decides.at<uint8_t>(gy, gx) = 1;
       }
   cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);

@@ -18,15 +18,15 @@ class ConfigRegistry;
 
 // Config section "map_occlusion".
 struct MapOcclusionOptions {
-  bool enabled = false;            // add the occlusion mask to the dynamic mask (paper mode only)
-  int cell_px = 16;                // side of the grid cells the map points are binned into (4-128)
-  int neighbourhood_cells = 1;     // a pixel is compared with the map points of its cell and this many
-                                   // cells around it (0-4)
-  int min_points = 2;              // fewer map points in that neighbourhood: no decision (>= 1)
-  double relative_margin = 0.1;    // a pixel is in front when nearer than (1 - this) x the nearest of
-  double absolute_margin_m = 0.05; // those map points minus this (relative in [0, 1), metres >= 0)
-  int open_px = 5;                 // side of the square opening that drops specks (0 = none, <= 31)
-  int grow_px = 8;                 // the mask is dilated by this on every side (0-64)
+  bool enabled = false;             // add the occlusion mask to the dynamic mask (paper mode only)
+  int cell_px = 16;                 // side of the grid cells the map points are binned into (4-128)
+  int neighbourhood_cells = 1;      // a pixel is compared with the map points of its cell and this many
+                                    // cells around it (0-4)
+  int min_points = 2;               // fewer map points in that neighbourhood: no decision (>= 1)
+  double relative_margin = 0.1;     // a pixel is in front when nearer than (1 - this) x the nearest of
+  double absolute_margin_m = 0.05;  // those map points minus this (relative in [0, 1), metres >= 0)
+  int open_px = 5;                  // side of the square opening that drops specks (0 = none, <= 31)
+  int grow_px = 8;                  // the mask is dilated by this on every side (0-64)
 
   // Throws InputError naming the key "map_occlusion.<field>" when a field is out of range.
   void Check() const;

@@ -9,9 +9,12 @@ namespace {
 
 int CvShape(MorphShape shape) {
   switch (shape) {
-    case MorphShape::kRect: return cv::MORPH_RECT;
-    case MorphShape::kEllipse: return cv::MORPH_ELLIPSE;
-    case MorphShape::kCross: return cv::MORPH_CROSS;
+    case MorphShape::kRect:
+      return cv::MORPH_RECT;
+    case MorphShape::kEllipse:
+      return cv::MORPH_ELLIPSE;
+    case MorphShape::kCross:
+      return cv::MORPH_CROSS;
   }
   return cv::MORPH_RECT;
 }

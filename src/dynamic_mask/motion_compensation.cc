@@ -112,10 +112,11 @@ void ValidRegion(const Eigen::Matrix3d& target_from_source, const cv::Size& sour
   // The source pixel centres span [0, w-1] x [0, h-1] (or the convex `area`); a homography that
   // keeps that polygon in front of the camera maps it to a convex polygon, rasterised directly.
   const double w = source_size.width - 1.0, h = source_size.height - 1.0;
-  const ImageArea source_polygon =
-      area.empty() ? ImageArea{{0.0f, 0.0f}, {static_cast<float>(w), 0.0f}, {static_cast<float>(w), static_cast<float>(h)},
-                               {0.0f, static_cast<float>(h)}}
-                   : area;
+  const ImageArea source_polygon = area.empty() ? ImageArea{{0.0f, 0.0f},
+                                                            {static_cast<float>(w), 0.0f},
+                                                            {static_cast<float>(w), static_cast<float>(h)},
+                                                            {0.0f, static_cast<float>(h)}}
+                                                : area;
   ImageArea polygon;
   polygon.reserve(source_polygon.size());
   for (const cv::Point2f& corner : source_polygon) {

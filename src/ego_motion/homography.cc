@@ -94,8 +94,7 @@ bool MinimalHomography(const std::array<Vec2, 4>& from, const std::array<Vec2, 4
 }
 
 // Normalised DLT over the given correspondences (normalised coordinates); H(2,2) = 1.
-bool DltNormalised(const std::vector<Vec2>& from, const std::vector<Vec2>& to, const std::vector<int>& use,
-                   Mat3* h) {
+bool DltNormalised(const std::vector<Vec2>& from, const std::vector<Vec2>& to, const std::vector<int>& use, Mat3* h) {
   if (use.size() < 4) return false;
   Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
   Eigen::Matrix<double, 9, 1> r1, r2;
@@ -260,15 +259,15 @@ std::vector<int> PolishOnInliers(const NormalisedHomographyEstimator& e, double 
 }  // namespace
 
 void HomographyOptions::Check() const {
-  Require(ransac_threshold_px > 0.0, "homography.ransac_threshold_px must be > 0, got " +
-                                         std::to_string(ransac_threshold_px));
-  Require(ransac_iterations >= 1, "homography.ransac_iterations must be >= 1, got " +
-                                      std::to_string(ransac_iterations));
+  Require(ransac_threshold_px > 0.0,
+          "homography.ransac_threshold_px must be > 0, got " + std::to_string(ransac_threshold_px));
+  Require(ransac_iterations >= 1,
+          "homography.ransac_iterations must be >= 1, got " + std::to_string(ransac_iterations));
   Require(ransac_confidence > 0.0 && ransac_confidence <= 1.0,
           "homography.ransac_confidence must be in (0, 1], got " + std::to_string(ransac_confidence));
   Require(min_inliers >= 4, "homography.min_inliers must be >= 4, got " + std::to_string(min_inliers));
-  Require(refine_iterations >= 0, "homography.refine_iterations must be >= 0, got " +
-                                      std::to_string(refine_iterations));
+  Require(refine_iterations >= 0,
+          "homography.refine_iterations must be >= 0, got " + std::to_string(refine_iterations));
 }
 
 double HomographyRmsError(const std::vector<cv::Point2f>& previous, const std::vector<cv::Point2f>& current,
@@ -277,8 +276,7 @@ double HomographyRmsError(const std::vector<cv::Point2f>& previous, const std::v
   if (previous.empty()) return 0.0;
   double sum = 0.0;
   for (size_t i = 0; i < previous.size(); ++i)
-    sum += TransferErrorSq(current_from_previous, Vec2(previous[i].x, previous[i].y),
-                           Vec2(current[i].x, current[i].y));
+    sum += TransferErrorSq(current_from_previous, Vec2(previous[i].x, previous[i].y), Vec2(current[i].x, current[i].y));
   return std::sqrt(sum / static_cast<double>(previous.size()));
 }
 
@@ -288,8 +286,7 @@ bool FitHomographyDlt(const std::vector<cv::Point2f>& previous, const std::vecto
   if (previous.size() < 4) return false;
   const Normalisation np = NormalisationOf(previous), nc = NormalisationOf(current);
   Mat3 normalised;
-  if (!DltNormalised(Apply(np, previous), Apply(nc, current), AllIndices(previous.size()), &normalised))
-    return false;
+  if (!DltNormalised(Apply(np, previous), Apply(nc, current), AllIndices(previous.size()), &normalised)) return false;
   return Denormalise(normalised, np, nc, current_from_previous);
 }
 
@@ -300,8 +297,7 @@ double RefineHomography(const std::vector<cv::Point2f>& previous, const std::vec
   Mat3 normalised = nc.Matrix() * (*current_from_previous) * np.Matrix().inverse();
   if (std::abs(normalised(2, 2)) > 1e-12) {
     normalised /= normalised(2, 2);
-    RefineNormalised(Apply(np, previous), Apply(nc, current), AllIndices(previous.size()), max_iterations,
-                     &normalised);
+    RefineNormalised(Apply(np, previous), Apply(nc, current), AllIndices(previous.size()), max_iterations, &normalised);
     Mat3 refined;
     if (Denormalise(normalised, np, nc, &refined) &&
         HomographyRmsError(previous, current, refined) <= HomographyRmsError(previous, current, *current_from_previous))
@@ -336,8 +332,8 @@ HomographyEstimate EstimateHomography(const std::vector<cv::Point2f>& previous, 
     return estimate;
   }
   if (found.num_inliers < options.min_inliers) {
-    estimate.failure = "too few inliers (" + std::to_string(found.num_inliers) + " < " +
-                       std::to_string(options.min_inliers) + ")";
+    estimate.failure =
+        "too few inliers (" + std::to_string(found.num_inliers) + " < " + std::to_string(options.min_inliers) + ")";
     return estimate;
   }
   Mat3 best = found.model;
@@ -348,8 +344,8 @@ HomographyEstimate EstimateHomography(const std::vector<cv::Point2f>& previous, 
     return estimate;
   }
   if (static_cast<int>(inliers.size()) < options.min_inliers) {
-    estimate.failure = "too few inliers (" + std::to_string(inliers.size()) + " < " +
-                       std::to_string(options.min_inliers) + ")";
+    estimate.failure =
+        "too few inliers (" + std::to_string(inliers.size()) + " < " + std::to_string(options.min_inliers) + ")";
     return estimate;
   }
   estimate.ok = true;

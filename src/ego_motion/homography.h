@@ -32,7 +32,7 @@ struct HomographyEstimate {
   bool ok = false;
   std::string failure;  // why not ok: "too few tracks (12 < 30)", "degenerate homography", ...
   Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();  // x_cur ~ H x_prev, H(2,2) = 1
-  std::vector<uint8_t> inliers;  // per input correspondence, 1 = inlier
+  std::vector<uint8_t> inliers;                                         // per input correspondence, 1 = inlier
   int num_inliers = 0;
   double rms_error_px = 0.0;  // over inliers after refinement, pixels in the current image
 };

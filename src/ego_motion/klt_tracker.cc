@@ -18,8 +18,8 @@ void Require(bool condition, const std::string& message) {
 
 void CheckGray(const cv::Mat& image, const char* what) {
   Require(!image.empty(), std::string(what) + " is empty");
-  Require(image.type() == CV_8UC1, std::string(what) + " must be CV_8UC1 (grey), got type " +
-                                       std::to_string(image.type()));
+  Require(image.type() == CV_8UC1,
+          std::string(what) + " must be CV_8UC1 (grey), got type " + std::to_string(image.type()));
 }
 
 }  // namespace
@@ -33,16 +33,13 @@ void KltOptions::Check() const {
           "klt.window_size_px must be odd and >= 3, got " + std::to_string(window_size_px));
   Require(pyramid_levels >= 0 && pyramid_levels <= 8,
           "klt.pyramid_levels must be in [0, 8], got " + std::to_string(pyramid_levels));
-  Require(max_forward_backward_error_px > 0.0, "klt.max_forward_backward_error_px must be > 0, got " +
-                                                   std::to_string(max_forward_backward_error_px));
-  Require(lk_max_iterations >= 1, "klt.lk_max_iterations must be >= 1, got " +
-                                      std::to_string(lk_max_iterations));
+  Require(max_forward_backward_error_px > 0.0,
+          "klt.max_forward_backward_error_px must be > 0, got " + std::to_string(max_forward_backward_error_px));
+  Require(lk_max_iterations >= 1, "klt.lk_max_iterations must be >= 1, got " + std::to_string(lk_max_iterations));
   Require(lk_epsilon_px > 0.0, "klt.lk_epsilon_px must be > 0, got " + std::to_string(lk_epsilon_px));
-  Require(border_margin_px >= 0, "klt.border_margin_px must be >= 0, got " +
-                                     std::to_string(border_margin_px));
+  Require(border_margin_px >= 0, "klt.border_margin_px must be >= 0, got " + std::to_string(border_margin_px));
   Require(detection_level >= 0 && detection_level <= pyramid_levels,
-          "klt.detection_level must be in [0, klt.pyramid_levels], got " +
-              std::to_string(detection_level));
+          "klt.detection_level must be in [0, klt.pyramid_levels], got " + std::to_string(detection_level));
 }
 
 TrackingPyramid BuildTrackingPyramid(const cv::Mat& gray, const KltOptions& options) {
@@ -74,8 +71,8 @@ std::vector<cv::Point2f> DetectOnLevel(const cv::Mat& image, int level, const Kl
     cv::compare(excluded, 0, allowed, cv::CMP_EQ);
   }
   std::vector<cv::Point2f> corners;
-  cv::goodFeaturesToTrack(image, corners, options.max_corners, options.quality_level,
-                          options.min_distance_px / scale, allowed, /*blockSize=*/3, /*useHarrisDetector=*/false);
+  cv::goodFeaturesToTrack(image, corners, options.max_corners, options.quality_level, options.min_distance_px / scale,
+                          allowed, /*blockSize=*/3, /*useHarrisDetector=*/false);
   if (level > 0) {
     // cv::pyrDown centres level pixel x on full-size pixel 2x (the convention LK uses too).
     for (auto& c : corners) {
@@ -117,8 +114,8 @@ std::vector<cv::Point2f> DetectCorners(const TrackingPyramid& pyramid, const Klt
   return DetectOnLevel(pyramid.levels[options.detection_level * stride], options.detection_level, options, exclude);
 }
 
-PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to,
-                        const std::vector<cv::Point2f>& points, const KltOptions& options) {
+PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to, const std::vector<cv::Point2f>& points,
+                        const KltOptions& options) {
   Require(!from.empty() && !to.empty(), "TrackPoints needs two built pyramids");
   Require(from.size == to.size, "TrackPoints needs pyramids of images of the same size");
   Require(from.window_size_px >= options.window_size_px && to.window_size_px >= options.window_size_px,
@@ -133,8 +130,7 @@ PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to,
   std::vector<cv::Point2f> forward, backward;
   std::vector<uchar> status_forward, status_backward;
   std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(from.levels, to.levels, points, forward, status_forward, error, window, max_level,
-                           criteria);
+  cv::calcOpticalFlowPyrLK(from.levels, to.levels, points, forward, status_forward, error, window, max_level, criteria);
   // Track back from where the points landed, starting at their origin: a cheap consistency check.
   backward = points;
   cv::calcOpticalFlowPyrLK(to.levels, from.levels, forward, backward, status_backward, error, window, max_level,

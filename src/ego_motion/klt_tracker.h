@@ -9,10 +9,11 @@
 namespace dynvo {
 
 struct KltOptions {
-  int max_corners = 200;                       // corners detected (200 give the same H as 400, at half the KLT cost)
-  double quality_level = 0.01;                 // goodFeaturesToTrack relative quality, in (0, 1]
-  double min_distance_px = 12.0;               // minimum spacing of corners, pixels
-  int window_size_px = 11;                     // LK window side, pixels (odd, >= 3; 11 is ~2x cheaper than 15; H within 0.1 px on synthetic frames)
+  int max_corners = 200;          // corners detected (200 give the same H as 400, at half the KLT cost)
+  double quality_level = 0.01;    // goodFeaturesToTrack relative quality, in (0, 1]
+  double min_distance_px = 12.0;  // minimum spacing of corners, pixels
+  int window_size_px =
+      11;  // LK window side, pixels (odd, >= 3; 11 is ~2x cheaper than 15; H within 0.1 px on synthetic frames)
   int pyramid_levels = 3;                      // LK pyramid levels above the base
   double max_forward_backward_error_px = 1.0;  // track dropped when tracking back misses by more, pixels
   int lk_max_iterations = 30;                  // LK iterations per pyramid level
@@ -58,8 +59,8 @@ std::vector<cv::Point2f> DetectCorners(const TrackingPyramid& pyramid, const Klt
 // Tracks `points` of the image of `from` into the image of `to`. Keeps the points found in both
 // directions whose backward track lands within max_forward_backward_error_px and whose end lies
 // inside the image (border_margin_px); previous = from-points, current = to-points, in input order.
-PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to,
-                        const std::vector<cv::Point2f>& points, const KltOptions& options);
+PointTracks TrackPoints(const TrackingPyramid& from, const TrackingPyramid& to, const std::vector<cv::Point2f>& points,
+                        const KltOptions& options);
 
 // Tracks well-spread corners of `previous_gray` into `current_gray`; corners on non-zero
 // `exclude` pixels are not used. Both images CV_8UC1 of the same size.

@@ -25,11 +25,11 @@
 namespace dynvo {
 
 struct RansacOptions {
-  double max_error = 1.0;      // inlier threshold on the residual, in the estimator's unit (> 0)
-  double confidence = 0.99;    // stop once an all-inlier sample was drawn this surely, (0, 1]
-  int max_iterations = 500;    // hypotheses at most (>= 1)
-  int min_refit_inliers = 0;   // a new best hypothesis is refitted when it has at least this many
-  unsigned seed = 1;           // of the sampler
+  double max_error = 1.0;     // inlier threshold on the residual, in the estimator's unit (> 0)
+  double confidence = 0.99;   // stop once an all-inlier sample was drawn this surely, (0, 1]
+  int max_iterations = 500;   // hypotheses at most (>= 1)
+  int min_refit_inliers = 0;  // a new best hypothesis is refitted when it has at least this many
+  unsigned seed = 1;          // of the sampler
 
   // Throws InputError naming `prefix` + "." + field when a value is out of range.
   void Check(const std::string& prefix) const;
@@ -41,7 +41,7 @@ struct RansacResult {
   Model model{};                 // the best (valid when found)
   std::vector<uint8_t> inliers;  // per datum, 1 = residual below max_error for `model`
   int num_inliers = 0;
-  int iterations = 0;            // hypotheses drawn
+  int iterations = 0;  // hypotheses drawn
 };
 
 // Hypotheses needed for an all-inlier sample of `sample_size` with `confidence` at
@@ -123,13 +123,13 @@ RansacResult<typename Estimator::Model> RunRansac(const Estimator& estimator, in
     }
     best = score;
     result.model = model;
-    needed = std::max(result.iterations + 1,
-                      RansacIterationsNeeded(static_cast<double>(score.inliers) / num_data, kMin,
-                                             options.confidence, options.max_iterations));
+    needed = std::max(result.iterations + 1, RansacIterationsNeeded(static_cast<double>(score.inliers) / num_data, kMin,
+                                                                    options.confidence, options.max_iterations));
   }
   if (!result.found) return result;
   estimator.Residuals(result.model, &squared);
-  for (int i = 0; i < num_data; ++i) result.inliers[static_cast<size_t>(i)] = squared[static_cast<size_t>(i)] < threshold_sq;
+  for (int i = 0; i < num_data; ++i)
+    result.inliers[static_cast<size_t>(i)] = squared[static_cast<size_t>(i)] < threshold_sq;
   result.num_inliers = static_cast<int>(std::count(result.inliers.begin(), result.inliers.end(), 1));
   return result;
 }

@@ -14,14 +14,12 @@ void AteOptions::Check() const {
   if (!std::isfinite(scale) || !(scale > 0.0))
     throw InputError("ate.scale must be a finite number > 0, got " + FormatNumber(scale));
   if (!std::isfinite(max_difference) || !(max_difference > 0.0))
-    throw InputError("ate.max_difference must be a finite number > 0, got " +
-                     FormatNumber(max_difference));
+    throw InputError("ate.max_difference must be a finite number > 0, got " + FormatNumber(max_difference));
 }
 
 std::string AteVariant(const AteOptions& options) {
-  return "Horn alignment (rotation + translation, no scale), max difference " +
-         FormatNumber(options.max_difference) + " s, offset " + FormatNumber(options.offset) +
-         " s, scale " + FormatNumber(options.scale);
+  return "Horn alignment (rotation + translation, no scale), max difference " + FormatNumber(options.max_difference) +
+         " s, offset " + FormatNumber(options.offset) + " s, scale " + FormatNumber(options.scale);
 }
 
 AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
@@ -31,8 +29,7 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   const std::vector<StampMatch> matches =
       AssociateStamps(stamps_gt, stamps_est, options.offset, options.max_difference);
   if (matches.size() < 2)
-    throw InputError("only " + std::to_string(matches.size()) +
-                     " estimated poses have a groundtruth stamp within " +
+    throw InputError("only " + std::to_string(matches.size()) + " estimated poses have a groundtruth stamp within " +
                      FormatNumber(options.max_difference) + " s (offset " + FormatNumber(options.offset) +
                      " s), need at least 2: do the files belong to the same sequence?");
 

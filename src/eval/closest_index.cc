@@ -38,13 +38,10 @@ std::size_t NearestIndex(const std::vector<double>& sorted_values, double target
   const std::size_t above = static_cast<std::size_t>(upper - sorted_values.begin());
   if (upper == sorted_values.end()) return above - 1;
   const std::size_t below = above - 1;
-  return std::abs(sorted_values[above] - target) < std::abs(sorted_values[below] - target)
-             ? above
-             : below;
+  return std::abs(sorted_values[above] - target) < std::abs(sorted_values[below] - target) ? above : below;
 }
 
-std::size_t ClosestIndex(const std::vector<double>& sorted_values, double target,
-                         ClosestLookup lookup) {
+std::size_t ClosestIndex(const std::vector<double>& sorted_values, double target, ClosestLookup lookup) {
   return lookup == ClosestLookup::kBenchmark ? BenchmarkClosestIndex(sorted_values, target)
                                              : NearestIndex(sorted_values, target);
 }

@@ -23,8 +23,7 @@ std::size_t BenchmarkClosestIndex(const std::vector<double>& sorted_values, doub
 std::size_t NearestIndex(const std::vector<double>& sorted_values, double target);
 
 // BenchmarkClosestIndex or NearestIndex, as `lookup` says.
-std::size_t ClosestIndex(const std::vector<double>& sorted_values, double target,
-                         ClosestLookup lookup);
+std::size_t ClosestIndex(const std::vector<double>& sorted_values, double target, ClosestLookup lookup);
 
 // "benchmark" or "nearest": the spelling of the command-line option.
 std::string ClosestLookupName(ClosestLookup lookup);

@@ -13,29 +13,24 @@ std::string Line(const char* format, const std::string& name, double value, cons
   return buffer;
 }
 
-std::string StatisticsLines(const std::string& prefix, const ErrorStatistics& s,
-                            const char* unit) {
+std::string StatisticsLines(const std::string& prefix, const ErrorStatistics& s, const char* unit) {
   std::string out;
-  const std::pair<const char*, double> rows[] = {{"rmse", s.rmse},     {"mean", s.mean},
-                                                 {"median", s.median}, {"std", s.std},
-                                                 {"min", s.min},       {"max", s.max}};
-  for (const auto& [name, value] : rows)
-    out += Line("%s %.6f %s\n", prefix + "." + name, value, unit);
+  const std::pair<const char*, double> rows[] = {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
+                                                 {"std", s.std},   {"min", s.min},   {"max", s.max}};
+  for (const auto& [name, value] : rows) out += Line("%s %.6f %s\n", prefix + "." + name, value, unit);
   return out;
 }
 
 }  // namespace
 
 std::string FormatRpeText(const RpeResult& result) {
-  return "RPE " + result.variant + "\n" + "compared_pose_pairs " +
-         std::to_string(result.pairs.size()) + " pairs\n" +
+  return "RPE " + result.variant + "\n" + "compared_pose_pairs " + std::to_string(result.pairs.size()) + " pairs\n" +
          StatisticsLines("translational_error", result.translation_m, "m") +
          StatisticsLines("rotational_error", result.rotation_deg, "deg");
 }
 
 std::string FormatAteText(const AteResult& result) {
-  return "ATE: " + result.variant + "\n" + "compared_pose_pairs " +
-         std::to_string(result.pairs.size()) + " pairs\n" +
+  return "ATE: " + result.variant + "\n" + "compared_pose_pairs " + std::to_string(result.pairs.size()) + " pairs\n" +
          StatisticsLines("absolute_translational_error", result.translation_m, "m");
 }
 
@@ -71,10 +66,9 @@ nlohmann::json AteJson(const AteResult& result, const AteOptions& options) {
   j["absolute_translational_error_m"] = StatisticsJson(result.translation_m);
   const Eigen::Matrix3d& r = result.gt_from_est.linear();
   const Eigen::Vector3d& t = result.gt_from_est.translation();
-  j["gt_from_est"] = {{"rotation", {{r(0, 0), r(0, 1), r(0, 2)},
-                                    {r(1, 0), r(1, 1), r(1, 2)},
-                                    {r(2, 0), r(2, 1), r(2, 2)}}},
-                      {"translation", {t.x(), t.y(), t.z()}}};
+  j["gt_from_est"] = {
+      {"rotation", {{r(0, 0), r(0, 1), r(0, 2)}, {r(1, 0), r(1, 1), r(1, 2)}, {r(2, 0), r(2, 1), r(2, 2)}}},
+      {"translation", {t.x(), t.y(), t.z()}}};
   return j;
 }
 
@@ -82,9 +76,8 @@ std::string RpePairsCsv(const RpeResult& result) {
   std::string out = "stamp_est_0,stamp_est_1,stamp_gt_0,stamp_gt_1,trans_error_m,rot_error_deg\n";
   char buffer[256];
   for (const RpePair& p : result.pairs) {
-    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.6f,%.6f,%.9f,%.9f\n", p.stamp_est_0,
-                  p.stamp_est_1, p.stamp_gt_0, p.stamp_gt_1, p.trans_error_m,
-                  p.rot_error_rad * 180.0 / kPi);
+    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.6f,%.6f,%.9f,%.9f\n", p.stamp_est_0, p.stamp_est_1, p.stamp_gt_0,
+                  p.stamp_gt_1, p.trans_error_m, p.rot_error_rad * 180.0 / kPi);
     out += buffer;
   }
   return out;
@@ -94,8 +87,7 @@ std::string AtePairsCsv(const AteResult& result) {
   std::string out = "stamp_gt,stamp_est,trans_error_m\n";
   char buffer[128];
   for (const AtePair& p : result.pairs) {
-    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.9f\n", p.stamp_gt, p.stamp_est,
-                  p.trans_error_m);
+    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.9f\n", p.stamp_gt, p.stamp_est, p.trans_error_m);
     out += buffer;
   }
   return out;

@@ -8,11 +8,10 @@
 
 namespace dynvo {
 
-Pose AlignRigid(const std::vector<Eigen::Vector3d>& source,
-                const std::vector<Eigen::Vector3d>& target) {
+Pose AlignRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target) {
   if (source.size() != target.size())
-    throw InputError("rigid alignment needs as many source as target points, got " +
-                     std::to_string(source.size()) + " and " + std::to_string(target.size()));
+    throw InputError("rigid alignment needs as many source as target points, got " + std::to_string(source.size()) +
+                     " and " + std::to_string(target.size()));
   if (source.empty()) throw InputError("rigid alignment needs at least one point pair");
   const double n = static_cast<double>(source.size());
   Eigen::Vector3d mean_source = Eigen::Vector3d::Zero(), mean_target = Eigen::Vector3d::Zero();
@@ -26,8 +25,7 @@ Pose AlignRigid(const std::vector<Eigen::Vector3d>& source,
   Eigen::Matrix3d w = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < source.size(); ++i)
     w += (source[i] - mean_source) * (target[i] - mean_target).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(w.transpose(),
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(w.transpose(), Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Matrix3d u = svd.matrixU();
   const Eigen::Matrix3d vh = svd.matrixV().transpose();
   Eigen::Matrix3d s = Eigen::Matrix3d::Identity();

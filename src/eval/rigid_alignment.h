@@ -13,7 +13,6 @@ namespace dynvo {
 // sum_i |R source_i + t - target_i|^2, computed exactly as align() in evaluate_ate.py
 // (SVD of the transposed cross-covariance). Throws InputError when the lists differ in size
 // or are empty.
-Pose AlignRigid(const std::vector<Eigen::Vector3d>& source,
-                const std::vector<Eigen::Vector3d>& target);
+Pose AlignRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target);
 
 }  // namespace dynvo

@@ -18,8 +18,7 @@ std::vector<double> Stamps(const Trajectory& trajectory, const char* name) {
 }
 
 // The script's index_est: the value along the estimated trajectory that delta counts.
-std::vector<double> DeltaIndex(const Trajectory& est, const std::vector<double>& stamps,
-                               DeltaUnit unit) {
+std::vector<double> DeltaIndex(const Trajectory& est, const std::vector<double>& stamps, DeltaUnit unit) {
   if (unit == DeltaUnit::kSeconds) return stamps;
   std::vector<double> index(est.size(), 0.0);
   if (unit == DeltaUnit::kFrames) {
@@ -70,18 +69,23 @@ void RpeOptions::Check() const {
 
 std::string DeltaUnitName(DeltaUnit unit) {
   switch (unit) {
-    case DeltaUnit::kSeconds: return "s";
-    case DeltaUnit::kFrames: return "f";
-    case DeltaUnit::kMeters: return "m";
-    case DeltaUnit::kRadians: return "rad";
-    case DeltaUnit::kDegrees: return "deg";
+    case DeltaUnit::kSeconds:
+      return "s";
+    case DeltaUnit::kFrames:
+      return "f";
+    case DeltaUnit::kMeters:
+      return "m";
+    case DeltaUnit::kRadians:
+      return "rad";
+    case DeltaUnit::kDegrees:
+      return "deg";
   }
   return "?";
 }
 
 DeltaUnit ParseDeltaUnit(const std::string& name) {
-  for (DeltaUnit unit : {DeltaUnit::kSeconds, DeltaUnit::kFrames, DeltaUnit::kMeters,
-                         DeltaUnit::kRadians, DeltaUnit::kDegrees})
+  for (DeltaUnit unit :
+       {DeltaUnit::kSeconds, DeltaUnit::kFrames, DeltaUnit::kMeters, DeltaUnit::kRadians, DeltaUnit::kDegrees})
     if (DeltaUnitName(unit) == name) return unit;
   throw InputError("rpe.delta_unit must be one of s, f, m, rad, deg, got '" + name + "'");
 }
@@ -89,8 +93,7 @@ DeltaUnit ParseDeltaUnit(const std::string& name) {
 std::string RpeVariant(const RpeOptions& options) {
   const std::string lookup = ClosestLookupName(options.closest) + " closest-index lookup";
   if (!options.fixed_delta)
-    return "all pairs: every ordered pose pair (global consistency, not drift per second), " +
-           lookup;
+    return "all pairs: every ordered pose pair (global consistency, not drift per second), " + lookup;
   const std::string delta = FormatNumber(options.delta);
   std::string unit_words = DeltaUnitName(options.unit);
   if (options.unit == DeltaUnit::kFrames) unit_words = options.delta == 1.0 ? "frame" : "frames";
@@ -113,8 +116,7 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
   const std::size_t n = est.size();
   std::vector<double> gaps;
   gaps.reserve(stamps_gt.size() - 1);
-  for (std::size_t k = 1; k < stamps_gt.size(); ++k)
-    gaps.push_back(stamps_gt[k] - stamps_gt[k - 1]);
+  for (std::size_t k = 1; k < stamps_gt.size(); ++k) gaps.push_back(stamps_gt[k] - stamps_gt[k - 1]);
   const double max_time_difference = 2.0 * Median(gaps);
 
   // Groundtruth index of each estimated stamp, and whether it is close enough.
@@ -160,14 +162,12 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
       for (std::size_t j = 0; j < n; ++j) compare(i, j);
   }
   if (candidates < 2)
-    throw InputError("the estimated trajectory gives " + std::to_string(candidates) +
-                     " pose pairs at fixed delta " + FormatNumber(options.delta) + " " +
-                     DeltaUnitName(options.unit) +
+    throw InputError("the estimated trajectory gives " + std::to_string(candidates) + " pose pairs at fixed delta " +
+                     FormatNumber(options.delta) + " " + DeltaUnitName(options.unit) +
                      ", need at least 2: is it longer than the delta?");
   if (result.pairs.size() < 2)
-    throw InputError("only " + std::to_string(result.pairs.size()) + " of " +
-                     std::to_string(candidates) + " pose pairs have groundtruth within " +
-                     FormatNumber(max_time_difference) +
+    throw InputError("only " + std::to_string(result.pairs.size()) + " of " + std::to_string(candidates) +
+                     " pose pairs have groundtruth within " + FormatNumber(max_time_difference) +
                      " s (twice the median groundtruth interval), need at least 2");
   result.translation_m = Summarize(trans_errors);
   result.rotation_deg = Summarize(rot_errors_deg);

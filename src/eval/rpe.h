@@ -23,8 +23,8 @@ struct RpeOptions {
   bool fixed_delta = true;  // false: every ordered pose pair (i, j), including i == j
   double delta = 1.0;       // in `unit`; only with fixed_delta
   DeltaUnit unit = DeltaUnit::kSeconds;
-  double offset = 0.0;  // seconds added to estimated stamps before the groundtruth lookup
-  double scale = 1.0;   // factor applied to estimated relative translations
+  double offset = 0.0;                                // seconds added to estimated stamps before the groundtruth lookup
+  double scale = 1.0;                                 // factor applied to estimated relative translations
   ClosestLookup closest = ClosestLookup::kBenchmark;  // how "closest" index/stamp is found
   // Throws InputError naming the key (rpe.delta, rpe.offset, rpe.scale).
   void Check() const;

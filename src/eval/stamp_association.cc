@@ -13,8 +13,7 @@ namespace {
 void CheckIncreasing(const std::vector<double>& stamps, const char* name) {
   for (std::size_t i = 1; i < stamps.size(); ++i)
     if (!(stamps[i] > stamps[i - 1]))
-      throw InputError(std::string(name) + " stamps must strictly increase (index " +
-                       std::to_string(i) + ")");
+      throw InputError(std::string(name) + " stamps must strictly increase (index " + std::to_string(i) + ")");
 }
 
 struct Candidate {
@@ -25,12 +24,10 @@ struct Candidate {
 
 }  // namespace
 
-std::vector<StampMatch> AssociateStamps(const std::vector<double>& first,
-                                        const std::vector<double>& second, double offset,
-                                        double max_difference) {
+std::vector<StampMatch> AssociateStamps(const std::vector<double>& first, const std::vector<double>& second,
+                                        double offset, double max_difference) {
   if (!(max_difference > 0.0) || !std::isfinite(max_difference))
-    throw InputError("max_difference must be a finite number > 0, got " +
-                     std::to_string(max_difference));
+    throw InputError("max_difference must be a finite number > 0, got " + std::to_string(max_difference));
   if (!std::isfinite(offset)) throw InputError("offset must be finite");
   CheckIncreasing(first, "first");
   CheckIncreasing(second, "second");
@@ -44,8 +41,7 @@ std::vector<StampMatch> AssociateStamps(const std::vector<double>& first,
     auto it = std::lower_bound(first.begin(), first.end(), shifted - margin);
     for (; it != first.end() && *it <= shifted + margin; ++it) {
       const double gap = std::abs(*it - (second[j] + offset));
-      if (gap < max_difference)
-        candidates.push_back({gap, static_cast<std::size_t>(it - first.begin()), j});
+      if (gap < max_difference) candidates.push_back({gap, static_cast<std::size_t>(it - first.begin()), j});
     }
   }
   // Python sorts (gap, a, b) tuples; stamps increase strictly, so indices order like stamps.

@@ -15,8 +15,7 @@ struct StampMatch {
 // greedily by increasing gap (ties by a, then b), each stamp used at most once; the result is
 // sorted by the first stamp. Runs in O((N + M) log + candidates), not O(N * M).
 // Throws InputError when a list does not strictly increase or max_difference is not > 0.
-std::vector<StampMatch> AssociateStamps(const std::vector<double>& first,
-                                        const std::vector<double>& second, double offset,
-                                        double max_difference);
+std::vector<StampMatch> AssociateStamps(const std::vector<double>& first, const std::vector<double>& second,
+                                        double offset, double max_difference);
 
 }  // namespace dynvo

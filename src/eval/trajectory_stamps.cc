@@ -17,8 +17,8 @@ std::vector<double> IncreasingStamps(const Trajectory& trajectory, const std::st
   stamps.reserve(trajectory.size());
   for (const StampedPose& p : trajectory) {
     if (!stamps.empty() && !(p.stamp > stamps.back()))
-      throw InputError(name + " trajectory: stamps must strictly increase, got " +
-                       FormatNumber(p.stamp) + " after " + FormatNumber(stamps.back()));
+      throw InputError(name + " trajectory: stamps must strictly increase, got " + FormatNumber(p.stamp) + " after " +
+                       FormatNumber(stamps.back()));
     stamps.push_back(p.stamp);
   }
   return stamps;

@@ -13,10 +13,10 @@ namespace dynvo {
 
 namespace {
 
-constexpr int kPatchSize = 31;       // ORB descriptor patch (pixels at the keypoint's level)
-constexpr int kHalfPatch = 15;       // radius of the orientation patch
-constexpr int kEdge = 19;            // no corner closer than this to a level's border
-constexpr int kCellSize = 32;        // cells where the low FAST threshold is retried (pixels)
+constexpr int kPatchSize = 31;  // ORB descriptor patch (pixels at the keypoint's level)
+constexpr int kHalfPatch = 15;  // radius of the orientation patch
+constexpr int kEdge = 19;       // no corner closer than this to a level's border
+constexpr int kCellSize = 32;   // cells where the low FAST threshold is retried (pixels)
 
 // Intensity-centroid orientation (Rosin) in degrees [0, 360) over a circular patch.
 float CentroidAngle(const cv::Mat& image, const cv::Point2f& pt, const std::vector<int>& umax) {
@@ -88,8 +88,8 @@ FeatureExtractor::FeatureExtractor(const FeatureOptions& options, Executor* leve
   // Descriptors only (keypoints provided per level): one level, border kEdge.
   // One engine per level so that levels may run concurrently without sharing state.
   for (int l = 0; l < levels; ++l)
-    orbs_.push_back(cv::ORB::create(options_.num_features, 1.2f, 1, kEdge, 0, 2,
-                                    cv::ORB::FAST_SCORE, kPatchSize, options_.fast_threshold));
+    orbs_.push_back(cv::ORB::create(options_.num_features, 1.2f, 1, kEdge, 0, 2, cv::ORB::FAST_SCORE, kPatchSize,
+                                    options_.fast_threshold));
 }
 
 bool FeatureExtractor::LevelUsable(int l) const {
@@ -110,9 +110,7 @@ void FeatureExtractor::DetectLevel(int l, const cv::Mat& exclude, std::vector<cv
   auto accept = [&](cv::KeyPoint k, int x0, int y0) {
     k.pt.x += static_cast<float>(inner.x + x0);
     k.pt.y += static_cast<float>(inner.y + y0);
-    if (k.pt.x < kEdge || k.pt.y < kEdge || k.pt.x > image.cols - kEdge - 1 ||
-        k.pt.y > image.rows - kEdge - 1)
-      return;
+    if (k.pt.x < kEdge || k.pt.y < kEdge || k.pt.x > image.cols - kEdge - 1 || k.pt.y > image.rows - kEdge - 1) return;
     if (Excluded(exclude, k.pt, scale)) return;
     candidates.push_back(k);
   };
@@ -147,8 +145,7 @@ void FeatureExtractor::DetectLevel(int l, const cv::Mat& exclude, std::vector<cv
         const int x1 = static_cast<int>(std::lround(end * cell_w)) + 6;
         const int y1 = static_cast<int>(std::lround((cy + 1) * cell_h)) + 6;
         retry.clear();
-        cv::FAST(image(inner)(cv::Rect(x0, y0, x1 - x0, y1 - y0)), retry,
-                 options_.min_fast_threshold, true);
+        cv::FAST(image(inner)(cv::Rect(x0, y0, x1 - x0, y1 - y0)), retry, options_.min_fast_threshold, true);
         for (const cv::KeyPoint& k : retry) accept(k, x0, y0);
         cx = end;
       }
@@ -163,8 +160,7 @@ void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& can
   const int wanted = features_per_level_[l];
   const double scale = scales_[l];
   const cv::Rect2f region(static_cast<float>(kEdge), static_cast<float>(kEdge),
-                          static_cast<float>(image.cols - 2 * kEdge),
-                          static_cast<float>(image.rows - 2 * kEdge));
+                          static_cast<float>(image.cols - 2 * kEdge), static_cast<float>(image.rows - 2 * kEdge));
   std::vector<int> chosen;
   switch (options_.distribution) {
     case FeatureDistribution::kQuadtree:
@@ -283,8 +279,7 @@ FrameFeatures FeatureExtractor::Assemble(const std::vector<std::vector<cv::KeyPo
   if (camera.HasDistortion() && n > 0) {
     std::vector<cv::Point2f> distorted(n), undistorted;
     for (size_t i = 0; i < n; ++i) distorted[i] = out.keypoints[i].pt;
-    cv::undistortPoints(distorted, undistorted, camera.K(), camera.DistCoeffs(), cv::noArray(),
-                        camera.K());
+    cv::undistortPoints(distorted, undistorted, camera.K(), camera.DistCoeffs(), cv::noArray(), camera.K());
     for (size_t i = 0; i < n; ++i) out.pixels[i] = {undistorted[i].x, undistorted[i].y};
   } else {
     for (size_t i = 0; i < n; ++i) out.pixels[i] = {out.keypoints[i].pt.x, out.keypoints[i].pt.y};

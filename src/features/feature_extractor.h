@@ -16,8 +16,8 @@ namespace dynvo {
 // The corners one extraction detected, per pyramid level, before they were spread and
 // described: what FeatureExtractor::ExtractFromCorners chooses from again.
 struct DetectedCorners {
-  cv::Size image_size;                             // of the image they were detected on
-  std::vector<std::vector<cv::KeyPoint>> levels;   // per level, level pixel coordinates
+  cv::Size image_size;                            // of the image they were detected on
+  std::vector<std::vector<cv::KeyPoint>> levels;  // per level, level pixel coordinates
 
   bool empty() const { return levels.empty(); }
 };
@@ -74,11 +74,11 @@ class FeatureExtractor {
 
   FeatureOptions options_;
   Executor* levels_executor_ = nullptr;
-  std::vector<double> scales_;            // scale of each level relative to level 0
-  std::vector<int> features_per_level_;   // share of num_features per level
-  std::vector<int> umax_;                 // circular patch bounds for the orientation
-  std::vector<cv::Mat> pyramid_;          // grey levels
-  std::vector<cv::Ptr<cv::ORB>> orbs_;    // descriptor engine per level (cv::ORB::compute)
+  std::vector<double> scales_;           // scale of each level relative to level 0
+  std::vector<int> features_per_level_;  // share of num_features per level
+  std::vector<int> umax_;                // circular patch bounds for the orientation
+  std::vector<cv::Mat> pyramid_;         // grey levels
+  std::vector<cv::Ptr<cv::ORB>> orbs_;   // descriptor engine per level (cv::ORB::compute)
 };
 
 }  // namespace dynvo

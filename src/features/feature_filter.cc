@@ -13,8 +13,7 @@ void Append(const FrameFeatures& from, int i, FrameFeatures* to) {
   to->keypoints.push_back(from.keypoints[i]);
   if (i < static_cast<int>(from.pixels.size())) to->pixels.push_back(from.pixels[i]);
   if (i < static_cast<int>(from.depths.size())) to->depths.push_back(from.depths[i]);
-  if (i < static_cast<int>(from.points_in_camera.size()))
-    to->points_in_camera.push_back(from.points_in_camera[i]);
+  if (i < static_cast<int>(from.points_in_camera.size())) to->points_in_camera.push_back(from.points_in_camera[i]);
 }
 
 cv::Mat SelectRows(const cv::Mat& descriptors, const std::vector<int>& rows) {
@@ -35,8 +34,7 @@ FrameFeatures SelectFeatures(const FrameFeatures& features, const std::vector<in
   const int n = static_cast<int>(features.size());
   for (int i : indices) {
     if (i < 0 || i >= n)
-      throw InputError("SelectFeatures: index " + std::to_string(i) + " out of range [0, " +
-                       std::to_string(n) + ")");
+      throw InputError("SelectFeatures: index " + std::to_string(i) + " out of range [0, " + std::to_string(n) + ")");
     Append(features, i, &out);
   }
   out.descriptors = SelectRows(features.descriptors, indices);
@@ -56,8 +54,7 @@ void AppendFeatures(const FrameFeatures& from, FrameFeatures* to) {
 }
 
 FeatureSplit SplitByMask(const FrameFeatures& features, const cv::Mat& mask) {
-  if (!mask.empty() && mask.type() != CV_8UC1)
-    throw InputError("SplitByMask: mask must be CV_8UC1");
+  if (!mask.empty() && mask.type() != CV_8UC1) throw InputError("SplitByMask: mask must be CV_8UC1");
   std::vector<int> kept, removed;
   kept.reserve(features.size());
   for (int i = 0; i < static_cast<int>(features.size()); ++i) {

@@ -46,13 +46,10 @@ bool Inside(const cv::Point2f& p, const cv::Rect2f& r) {
 }
 
 // Keeps the `wanted` strongest of `indices` (ties by index), sorted by index.
-void KeepStrongest(const std::vector<cv::KeyPoint>& keypoints, int wanted,
-                   std::vector<int>* indices) {
+void KeepStrongest(const std::vector<cv::KeyPoint>& keypoints, int wanted, std::vector<int>* indices) {
   if (static_cast<int>(indices->size()) > wanted) {
     std::nth_element(indices->begin(), indices->begin() + wanted, indices->end(), [&](int a, int b) {
-      return keypoints[a].response != keypoints[b].response
-                 ? keypoints[a].response > keypoints[b].response
-                 : a < b;
+      return keypoints[a].response != keypoints[b].response ? keypoints[a].response > keypoints[b].response : a < b;
     });
     indices->resize(wanted);
   }
@@ -61,8 +58,7 @@ void KeepStrongest(const std::vector<cv::KeyPoint>& keypoints, int wanted,
 
 }  // namespace
 
-std::vector<int> DistributeQuadtree(const std::vector<cv::KeyPoint>& keypoints,
-                                    const cv::Rect2f& region, int wanted) {
+std::vector<int> DistributeQuadtree(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region, int wanted) {
   std::vector<int> kept;
   if (wanted <= 0 || region.width <= 0 || region.height <= 0) return kept;
 
@@ -86,9 +82,7 @@ std::vector<int> DistributeQuadtree(const std::vector<cv::KeyPoint>& keypoints,
     const int ry = std::min(roots_y - 1, static_cast<int>((p.y - region.y) / root_h));
     nodes[ry * roots_x + rx].members.push_back(i);
   }
-  nodes.erase(std::remove_if(nodes.begin(), nodes.end(),
-                             [](const Node& n) { return n.members.empty(); }),
-              nodes.end());
+  nodes.erase(std::remove_if(nodes.begin(), nodes.end(), [](const Node& n) { return n.members.empty(); }), nodes.end());
 
   std::vector<Node> next;
   while (static_cast<int>(nodes.size()) < wanted) {
@@ -98,12 +92,10 @@ std::vector<int> DistributeQuadtree(const std::vector<cv::KeyPoint>& keypoints,
     if (splittable.empty()) break;
     // A full round adds up to three nodes per split. When it would overshoot, split the most
     // populated nodes first and stop as soon as there are enough.
-    const bool last_round =
-        static_cast<int>(nodes.size() + 3 * splittable.size()) >= wanted;
+    const bool last_round = static_cast<int>(nodes.size() + 3 * splittable.size()) >= wanted;
     if (last_round)
-      std::stable_sort(splittable.begin(), splittable.end(), [&](size_t a, size_t b) {
-        return nodes[a].members.size() > nodes[b].members.size();
-      });
+      std::stable_sort(splittable.begin(), splittable.end(),
+                       [&](size_t a, size_t b) { return nodes[a].members.size() > nodes[b].members.size(); });
     next.clear();
     std::vector<uint8_t> split_done(nodes.size(), 0);
     int count = static_cast<int>(nodes.size());
@@ -125,8 +117,7 @@ std::vector<int> DistributeQuadtree(const std::vector<cv::KeyPoint>& keypoints,
   return kept;
 }
 
-std::vector<int> DistributeGrid(const std::vector<cv::KeyPoint>& keypoints,
-                                const cv::Rect2f& region, int wanted) {
+std::vector<int> DistributeGrid(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region, int wanted) {
   std::vector<int> kept;
   if (wanted <= 0 || region.width <= 0 || region.height <= 0) return kept;
   const double cell = std::sqrt(static_cast<double>(region.width) * region.height / wanted);
@@ -169,4 +160,3 @@ std::vector<int> StrongestKeypoints(const std::vector<cv::KeyPoint>& keypoints, 
 }
 
 }  // namespace dynvo
-

@@ -42,7 +42,10 @@ struct PoseBlock {
 PoseBlock ToBlock(const Pose& camera_from_world) {
   const Eigen::Quaterniond q = PoseQuaternion(camera_from_world);
   PoseBlock b;
-  b.q[0] = q.x(); b.q[1] = q.y(); b.q[2] = q.z(); b.q[3] = q.w();
+  b.q[0] = q.x();
+  b.q[1] = q.y();
+  b.q[2] = q.z();
+  b.q[3] = q.w();
   for (int i = 0; i < 3; ++i) b.t[i] = camera_from_world.translation()[i];
   return b;
 }
@@ -77,9 +80,9 @@ SquaredErrors Errors(const Camera& camera, double bf, const Pose& camera_from_wo
 }
 
 struct Residual {
-  size_t keyframe;      // index into the map's keyframes
-  size_t observation;   // index into that keyframe's observations
-  size_t point;         // index into the optimised points
+  size_t keyframe;     // index into the map's keyframes
+  size_t observation;  // index into that keyframe's observations
+  size_t point;        // index into the optimised points
 };
 
 // The keyframes a local BA uses: the newest `window_keyframes` and the older ones observing
@@ -150,8 +153,7 @@ struct BaState {
 // no residual was active (nothing to solve).
 bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, double bf, const BaWindow& w,
                 const std::vector<Residual>& residuals, const std::vector<uint8_t>& active,
-                const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report,
-                bool* solved) {
+                const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report, bool* solved) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
@@ -252,7 +254,8 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
   double initial_sq = 0.0;
   for (const Residual& r : residuals)
     initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, state.points[r.point],
-                         keyframes[r.keyframe].observations[r.observation]).pixel;
+                         keyframes[r.keyframe].observations[r.observation])
+                      .pixel;
   for (size_t k = 0; k < n; ++k)
     if (w.used[k] && !w.fixed[k]) ++report.num_keyframes_optimised;
   report.num_keyframes_fixed = static_cast<int>(w.num_fixed);
@@ -273,7 +276,8 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
     for (size_t i = 0; i < residuals.size(); ++i) {
       const Residual& r = residuals[i];
       if (active[i] && Errors(camera, bf, FromBlock(state.poses[r.keyframe]), state.points[r.point],
-                              keyframes[r.keyframe].observations[r.observation]).full > threshold_sq) {
+                              keyframes[r.keyframe].observations[r.observation])
+                               .full > threshold_sq) {
         active[i] = 0;
         any_new_outlier = true;
       }

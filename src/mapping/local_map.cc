@@ -26,8 +26,8 @@ void LocalMapOptions::Check() const {
 
 LocalMap::LocalMap(const LocalMapOptions& options) : options_(options) { options_.Check(); }
 
-int64_t LocalMap::AddPoint(const Eigen::Vector3d& position_in_world, const cv::Mat& descriptor,
-                           int64_t frame_index, float angle_deg) {
+int64_t LocalMap::AddPoint(const Eigen::Vector3d& position_in_world, const cv::Mat& descriptor, int64_t frame_index,
+                           float angle_deg) {
   CheckDescriptor(descriptor, "AddPoint");
   MapPoint point;
   point.id = next_point_id_++;
@@ -60,10 +60,8 @@ int64_t LocalMap::AddKeyframe(Keyframe keyframe) {
   return id;
 }
 
-void LocalMap::RemoveObservations(
-    const std::vector<std::pair<int64_t, int64_t>>& keyframe_point_ids) {
-  const std::set<std::pair<int64_t, int64_t>> doomed(keyframe_point_ids.begin(),
-                                                     keyframe_point_ids.end());
+void LocalMap::RemoveObservations(const std::vector<std::pair<int64_t, int64_t>>& keyframe_point_ids) {
+  const std::set<std::pair<int64_t, int64_t>> doomed(keyframe_point_ids.begin(), keyframe_point_ids.end());
   for (Keyframe& keyframe : keyframes_) {
     auto& obs = keyframe.observations;
     obs.erase(std::remove_if(obs.begin(), obs.end(),
@@ -80,8 +78,7 @@ void LocalMap::RemoveObservations(
 
 void LocalMap::MarkSeen(int64_t point_id, int64_t frame_index) {
   auto it = points_.find(point_id);
-  if (it != points_.end())
-    it->second.last_seen_frame = std::max(it->second.last_seen_frame, frame_index);
+  if (it != points_.end()) it->second.last_seen_frame = std::max(it->second.last_seen_frame, frame_index);
 }
 
 void LocalMap::SetUnconfirmedFrames(int64_t point_id, int frames) {

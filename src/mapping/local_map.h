@@ -39,8 +39,8 @@ class LocalMap {
   // Adds a point that no keyframe observes yet and returns its id. Unless the next
   // AddKeyframe observes it, that call removes it again. Throws InputError unless the
   // descriptor is 1 x 32 CV_8UC1 (so is SetAppearance's).
-  int64_t AddPoint(const Eigen::Vector3d& position_in_world, const cv::Mat& descriptor,
-                   int64_t frame_index, float angle_deg = 0.0f);
+  int64_t AddPoint(const Eigen::Vector3d& position_in_world, const cv::Mat& descriptor, int64_t frame_index,
+                   float angle_deg = 0.0f);
 
   // Appends a keyframe (its id is assigned here and returned) and then enforces the bounds.
   // Observations of unknown points and repeated observations of one point are dropped.

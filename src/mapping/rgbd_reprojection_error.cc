@@ -6,13 +6,18 @@
 
 namespace dynvo {
 
-RgbdReprojectionCost::RgbdReprojectionCost(const Eigen::Vector2d& observed, double depth,
-                                           double bf, double fx, double fy, double cx, double cy)
-    : observed_(observed), has_depth_(depth > 0.0), bf_(bf),
-      observed_disparity_(depth > 0.0 ? bf / depth : 0.0), fx_(fx), fy_(fy), cx_(cx), cy_(cy) {}
+RgbdReprojectionCost::RgbdReprojectionCost(const Eigen::Vector2d& observed, double depth, double bf, double fx,
+                                           double fy, double cx, double cy)
+    : observed_(observed),
+      has_depth_(depth > 0.0),
+      bf_(bf),
+      observed_disparity_(depth > 0.0 ? bf / depth : 0.0),
+      fx_(fx),
+      fy_(fy),
+      cx_(cx),
+      cy_(cy) {}
 
-bool RgbdReprojectionCost::Evaluate(double const* const* parameters, double* residuals,
-                                    double** jacobians) const {
+bool RgbdReprojectionCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   const double* q = parameters[0];  // x y z w
   const Eigen::Map<const Eigen::Vector3d> t(parameters[1]);
   const Eigen::Map<const Eigen::Vector3d> x(parameters[2]);
@@ -23,8 +28,7 @@ bool RgbdReprojectionCost::Evaluate(double const* const* parameters, double* res
     if (jacobians != nullptr) {
       const int sizes[3] = {4, 3, 3};
       for (int b = 0; b < 3; ++b)
-        if (jacobians[b] != nullptr)
-          Eigen::Map<Eigen::MatrixXd>(jacobians[b], 3, sizes[b]).setZero();
+        if (jacobians[b] != nullptr) Eigen::Map<Eigen::MatrixXd>(jacobians[b], 3, sizes[b]).setZero();
     }
     return true;
   }

@@ -30,10 +30,16 @@ class RgbdReprojectionError {
  public:
   // `observed` undistorted pixel, `depth` measured (metres; <= 0: none, r_2 = 0), `bf` = fx *
   // baseline (pixel metres).
-  RgbdReprojectionError(const Eigen::Vector2d& observed, double depth, double bf, double fx,
-                        double fy, double cx, double cy)
-      : observed_(observed), has_depth_(depth > 0.0), bf_(bf),
-        observed_disparity_(depth > 0.0 ? bf / depth : 0.0), fx_(fx), fy_(fy), cx_(cx), cy_(cy) {}
+  RgbdReprojectionError(const Eigen::Vector2d& observed, double depth, double bf, double fx, double fy, double cx,
+                        double cy)
+      : observed_(observed),
+        has_depth_(depth > 0.0),
+        bf_(bf),
+        observed_disparity_(depth > 0.0 ? bf / depth : 0.0),
+        fx_(fx),
+        fy_(fy),
+        cx_(cx),
+        cy_(cy) {}
 
   template <typename T>
   bool operator()(const T* q_xyzw, const T* t, const T* point_in_world, T* residual) const {
@@ -50,8 +56,8 @@ class RgbdReprojectionError {
     return true;
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, double depth, double bf,
-                                     double fx, double fy, double cx, double cy) {
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, double depth, double bf, double fx, double fy,
+                                     double cx, double cy) {
     return new ceres::AutoDiffCostFunction<RgbdReprojectionError, 3, 4, 3, 3>(
         new RgbdReprojectionError(observed, depth, bf, fx, fy, cx, cy));
   }
@@ -68,10 +74,9 @@ class RgbdReprojectionError {
 // ambient parameters (q as 4 numbers), as Ceres expects with a manifold.
 class RgbdReprojectionCost : public ceres::SizedCostFunction<3, 4, 3, 3> {
  public:
-  RgbdReprojectionCost(const Eigen::Vector2d& observed, double depth, double bf, double fx,
-                       double fy, double cx, double cy);
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override;
+  RgbdReprojectionCost(const Eigen::Vector2d& observed, double depth, double bf, double fx, double fy, double cx,
+                       double cy);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:
   Eigen::Vector2d observed_;

@@ -32,9 +32,12 @@ void Save(const std::string& path, const cv::Mat& image) {
 
 const char* StatusName(DebugFeature::Status status) {
   switch (status) {
-    case DebugFeature::Status::kKept: return "kept";
-    case DebugFeature::Status::kRemoved: return "removed";
-    case DebugFeature::Status::kReadmitted: return "readmitted";
+    case DebugFeature::Status::kKept:
+      return "kept";
+    case DebugFeature::Status::kRemoved:
+      return "removed";
+    case DebugFeature::Status::kReadmitted:
+      return "readmitted";
   }
   return "?";
 }
@@ -44,8 +47,8 @@ void WriteFeatureList(const std::string& path, const std::vector<DebugFeature>& 
   out << "x,y,octave,depth_m,status,inlier\n";
   char line[128];
   for (const DebugFeature& f : features) {
-    std::snprintf(line, sizeof(line), "%.2f,%.2f,%d,%.4f,%s,%d\n", f.pixel.x, f.pixel.y, f.octave,
-                  f.depth_m, StatusName(f.status), f.inlier ? 1 : 0);
+    std::snprintf(line, sizeof(line), "%.2f,%.2f,%d,%.4f,%s,%d\n", f.pixel.x, f.pixel.y, f.octave, f.depth_m,
+                  StatusName(f.status), f.inlier ? 1 : 0);
     out << line;
   }
   out.flush();
@@ -67,9 +70,7 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const std::vector<DebugFeature>& featur
 }  // namespace
 
 std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const TrackingResult& tracking) {
-  const auto inlier = [&](size_t i) {
-    return i < tracking.feature_inliers.size() && tracking.feature_inliers[i] != 0;
-  };
+  const auto inlier = [&](size_t i) { return i < tracking.feature_inliers.size() && tracking.feature_inliers[i] != 0; };
   std::vector<DebugFeature> list;
   list.reserve(split.kept.size() + split.removed.size());
   const auto add = [&](const FrameFeatures& f, size_t i, DebugFeature::Status status, bool used) {
@@ -95,7 +96,8 @@ DebugPanelsWriter::DebugPanelsWriter(std::string dir, std::set<size_t> frames)
 void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed) const {
   if (frames_.count(frame.index) == 0) return;
   const MaskPacket& mask = processed.stages.mask;
-  const std::vector<DebugFeature> features = ListDebugFeatures(processed.stages.features.split, processed.stages.tracking);
+  const std::vector<DebugFeature> features =
+      ListDebugFeatures(processed.stages.features.split, processed.stages.tracking);
   const cv::Mat& current_bgr = frame.bgr;
   const std::string& dir = dir_;
   char prefix[64];
@@ -115,8 +117,10 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
   WriteFeatureList(dir + prefix + "features.csv", features);
   // The stages the paper does not have, outside the montage.
   const std::vector<std::pair<std::string, cv::Mat>> additions = {
-      {"background", processed.stages.features.described}, {"depth_change", mask.change_seeds},
-      {"map_occlusion", mask.map_occlusion}, {"map_occlusion_candidates", mask.map_occlusion_candidates}};
+      {"background", processed.stages.features.described},
+      {"depth_change", mask.change_seeds},
+      {"map_occlusion", mask.map_occlusion},
+      {"map_occlusion_candidates", mask.map_occlusion_candidates}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

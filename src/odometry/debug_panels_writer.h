@@ -17,11 +17,11 @@ namespace dynvo {
 // whether the pose used it.
 struct DebugFeature {
   enum class Status { kKept, kRemoved, kReadmitted };
-  cv::Point2f pixel;               // keypoint as detected (image coordinates)
-  int octave = 0;                  // ORB pyramid level
-  double depth_m = 0.0;            // 0 = no usable depth
-  Status status = Status::kKept;   // kept by the mask, removed, or removed and readmitted
-  bool inlier = false;             // an inlier of the frame's final pose
+  cv::Point2f pixel;              // keypoint as detected (image coordinates)
+  int octave = 0;                 // ORB pyramid level
+  double depth_m = 0.0;           // 0 = no usable depth
+  Status status = Status::kKept;  // kept by the mask, removed, or removed and readmitted
+  bool inlier = false;            // an inlier of the frame's final pose
 };
 
 // Every feature of `split` with its status and whether the pose used it (`tracking`'s

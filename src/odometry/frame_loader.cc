@@ -1,4 +1,5 @@
 #include "odometry/frame_loader.h"
+#include "core/stopwatch.h"
 
 #include <chrono>
 
@@ -13,12 +14,11 @@ FrameLoader::FrameLoader(const TumDataset& dataset, size_t count, bool with_mask
       queue_size_(queue_size < 1 ? 1 : queue_size) {}
 
 LoadedFrame FrameLoader::LoadOne(size_t index) const {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   LoadedFrame loaded;
   loaded.frame = dataset_.Load(index);
   if (with_masks_) loaded.truth_mask = dataset_.LoadMask(index);
-  loaded.load_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  loaded.load_ms = MillisecondsSince(start);
   return loaded;
 }
 

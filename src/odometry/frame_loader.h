@@ -20,8 +20,7 @@ class FrameLoader {
  public:
   // Loads frames [0, count) of `dataset`, which must outlive the loader, as must `executor`.
   // `with_masks` also loads ground-truth masks. Up to `queue_size` frames are decoded ahead.
-  FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, Executor& executor,
-              size_t queue_size = 4);
+  FrameLoader(const TumDataset& dataset, size_t count, bool with_masks, Executor& executor, size_t queue_size = 4);
 
   // The next frame in order; nullopt after the last. Rethrows the error (InputError) of a
   // frame that failed to load, at that frame's turn.

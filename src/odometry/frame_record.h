@@ -33,14 +33,14 @@ struct FrameRecord {
   int features_total = 0;
   int features_kept = 0;
   int features_removed = 0;
-  int features_readmitted = 0;  // removed features verified static that rejoined the pose
-  int new_points_rejected = 0;  // matches to unconfirmed map points left out of the pose
+  int features_readmitted = 0;       // removed features verified static that rejoined the pose
+  int new_points_rejected = 0;       // matches to unconfirmed map points left out of the pose
   int coherent_motion_rejected = 0;  // pose inliers that moved with their neighbours
-  bool mask_ok = false;       // a dynamic mask was computed this frame
-  std::string mask_note;      // why not, when the mask stage is on and failed
-  double dynamic_ratio = 0;   // share of pixels marked dynamic
-  int mask_threshold = -1;    // grey level the forward difference was binarised at (last round);
-                              // -1 when no mask was computed
+  bool mask_ok = false;              // a dynamic mask was computed this frame
+  std::string mask_note;             // why not, when the mask stage is on and failed
+  double dynamic_ratio = 0;          // share of pixels marked dynamic
+  int mask_threshold = -1;           // grey level the forward difference was binarised at (last round);
+                                     // -1 when no mask was computed
   TrackingState state = TrackingState::kInitializing;
   std::string tracking_note;
   int num_matches = 0;

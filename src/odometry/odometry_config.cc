@@ -9,8 +9,7 @@
 namespace dynvo {
 
 void RunOptions::Check() const {
-  if (max_frames < 0)
-    throw InputError("run.max_frames must be >= 0 (0 = all), got " + std::to_string(max_frames));
+  if (max_frames < 0) throw InputError("run.max_frames must be >= 0 (0 = all), got " + std::to_string(max_frames));
 }
 
 OdometryConfig::OdometryConfig() {
@@ -47,9 +46,12 @@ void OdometryConfig::Check() const {
 
 std::string ToString(MaskSourceKind kind) {
   switch (kind) {
-    case MaskSourceKind::kNone: return "none";
-    case MaskSourceKind::kDifference: return "difference";
-    case MaskSourceKind::kGroundTruth: return "ground_truth";
+    case MaskSourceKind::kNone:
+      return "none";
+    case MaskSourceKind::kDifference:
+      return "difference";
+    case MaskSourceKind::kGroundTruth:
+      return "ground_truth";
   }
   return "difference";
 }
@@ -95,29 +97,52 @@ void NoteMovedKeys(ConfigRegistry* r) {
   r->NoteMoved("dynamic_mask.source", "is now mask_source");
   r->NoteMoved("dynamic_mask.rounds_min_change_px", fixed);
   r->NoteMoved("ego_motion.seed", "is now homography.seed");
-  for (const char* key : {"max_corners", "quality_level", "min_distance_px", "window_size_px", "pyramid_levels",
-                          "max_forward_backward_error_px", "lk_max_iterations", "lk_epsilon_px", "border_margin_px",
-                          "detection_level", "ransac_confidence", "ransac_threshold_px", "ransac_iterations",
-                          "min_inliers", "refine", "refine_iterations"})
+  for (const char* key :
+       {"max_corners", "quality_level", "min_distance_px", "window_size_px", "pyramid_levels",
+        "max_forward_backward_error_px", "lk_max_iterations", "lk_epsilon_px", "border_margin_px", "detection_level",
+        "ransac_confidence", "ransac_threshold_px", "ransac_iterations", "min_inliers", "refine", "refine_iterations"})
     r->NoteMoved(std::string("ego_motion.") + key, fixed);
-  for (const char* key : {"matching.search_radius_px", "matching.ratio", "pose.seed", "pose.huber_delta_px",
-                          "map.max_keyframes", "map.max_points", "keyframes.max_frames_between",
-                          "keyframes.min_tracked_ratio", "local_ba.enabled", "local_ba.window_keyframes",
-                          "local_ba.virtual_baseline_m"})
+  for (const char* key :
+       {"matching.search_radius_px", "matching.ratio", "pose.seed", "pose.huber_delta_px", "map.max_keyframes",
+        "map.max_points", "keyframes.max_frames_between", "keyframes.min_tracked_ratio", "local_ba.enabled",
+        "local_ba.window_keyframes", "local_ba.virtual_baseline_m"})
     r->NoteMoved(key, std::string("is now tracking.") + key);
-  for (const char* key : {"matching.max_descriptor_distance", "matching.check_orientation", "pose.ransac_threshold_px",
-                          "pose.ransac_iterations", "pose.min_inliers", "pose.refine_iterations", "pose.refine_rounds",
-                          "pose.outlier_threshold_px", "keyframes.min_translation_m", "keyframes.min_rotation_deg",
-                          "local_ba.max_iterations", "local_ba.huber_delta_px", "local_ba.outlier_threshold_px",
-                          "local_ba.rounds", "tracking.wide_search_factor", "tracking.lost_frames_before_reseed",
-                          "tracking.readmit_rms_factor", "tracking.new_point_max_shift_m",
-                          "tracking.coherent_motion.radius_px", "tracking.coherent_motion.max_depth_ratio",
-                          "tracking.coherent_motion.min_neighbours", "tracking.coherent_motion.min_z",
-                          "tracking.coherent_motion.min_sigma_px", "depth_change.frames", "depth_change.threshold",
-                          "depth_change.open_px", "depth_change.max_share", "map_occlusion.cell_px",
-                          "map_occlusion.neighbourhood_cells", "map_occlusion.min_points",
-                          "map_occlusion.relative_margin", "map_occlusion.absolute_margin_m", "map_occlusion.open_px",
-                          "depth_trim.min_gap", "depth_trim.min_region_px", "depth_trim.min_explained"})
+  for (const char* key : {"matching.max_descriptor_distance",
+                          "matching.check_orientation",
+                          "pose.ransac_threshold_px",
+                          "pose.ransac_iterations",
+                          "pose.min_inliers",
+                          "pose.refine_iterations",
+                          "pose.refine_rounds",
+                          "pose.outlier_threshold_px",
+                          "keyframes.min_translation_m",
+                          "keyframes.min_rotation_deg",
+                          "local_ba.max_iterations",
+                          "local_ba.huber_delta_px",
+                          "local_ba.outlier_threshold_px",
+                          "local_ba.rounds",
+                          "tracking.wide_search_factor",
+                          "tracking.lost_frames_before_reseed",
+                          "tracking.readmit_rms_factor",
+                          "tracking.new_point_max_shift_m",
+                          "tracking.coherent_motion.radius_px",
+                          "tracking.coherent_motion.max_depth_ratio",
+                          "tracking.coherent_motion.min_neighbours",
+                          "tracking.coherent_motion.min_z",
+                          "tracking.coherent_motion.min_sigma_px",
+                          "depth_change.frames",
+                          "depth_change.threshold",
+                          "depth_change.open_px",
+                          "depth_change.max_share",
+                          "map_occlusion.cell_px",
+                          "map_occlusion.neighbourhood_cells",
+                          "map_occlusion.min_points",
+                          "map_occlusion.relative_margin",
+                          "map_occlusion.absolute_margin_m",
+                          "map_occlusion.open_px",
+                          "depth_trim.min_gap",
+                          "depth_trim.min_region_px",
+                          "depth_trim.min_explained"})
     r->NoteMoved(key, fixed);
   r->NoteMoved("depth_change.seeds_only", "was retired: the depth change always only seeds the map occlusion");
   r->NoteMoved("map_occlusion.seeded", "was retired: the map occlusion is always seeded");
@@ -135,7 +160,7 @@ void BindConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   r->BindChoice(
       "mask_source", {"none", "difference", "ground_truth"}, [c] { return ToString(c->mask_source); },
       [c](const std::string& s) {
-        c->mask_source = s == "none" ? MaskSourceKind::kNone
+        c->mask_source = s == "none"           ? MaskSourceKind::kNone
                          : s == "ground_truth" ? MaskSourceKind::kGroundTruth
                                                : MaskSourceKind::kDifference;
       },

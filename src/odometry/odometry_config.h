@@ -44,7 +44,7 @@ enum class MaskSourceKind {
 std::string ToString(MaskSourceKind kind);
 
 struct RunOptions {
-  int max_frames = 0;   // process at most this many frames (0 = all)
+  int max_frames = 0;  // process at most this many frames (0 = all)
   void Check() const;
 };
 
@@ -53,12 +53,12 @@ struct OdometryConfig {
   // that hold on the benchmark's dev split switched on (configs/paper.json switches all off).
   OdometryConfig();
 
-  TumDatasetOptions dataset;          // "dataset.*"
-  CameraConfig camera;                // "camera.*"
+  TumDatasetOptions dataset;                                 // "dataset.*"
+  CameraConfig camera;                                       // "camera.*"
   MaskSourceKind mask_source = MaskSourceKind::kDifference;  // "mask_source"
-  KltOptions klt;                     // the KLT tracks of the ego-motion (no keys)
-  HomographyOptions homography;       // "homography.*": the ego-motion homography
-  DynamicMaskOptions dynamic_mask;    // "dynamic_mask.*": the differencing source
+  KltOptions klt;                                            // the KLT tracks of the ego-motion (no keys)
+  HomographyOptions homography;                              // "homography.*": the ego-motion homography
+  DynamicMaskOptions dynamic_mask;                           // "dynamic_mask.*": the differencing source
   // Refinements of the differencing mask (not applied to the other sources):
   DepthChangeOptions depth_change;    // "depth_change.*"
   MapOcclusionOptions map_occlusion;  // "map_occlusion.*"

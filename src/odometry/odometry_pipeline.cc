@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "core/stopwatch.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "pipeline/depth_change_refinement.h"
 #include "pipeline/differencing_mask_source.h"
@@ -11,12 +12,6 @@
 
 namespace dynvo {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const ImageArea& area, Executor& executor) {
   if (config.mask_source == MaskSourceKind::kNone) return std::make_unique<NoMaskSource>();
@@ -48,7 +43,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
       tracker_(camera, config.tracking) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
-  const auto start = Clock::now();
+  const auto start = SteadyClock::now();
   ProcessedFrame processed;
   FrameOutput& out = processed.stages;
   features_.Begin(frame);  // ORB on the executor, beside the mask
@@ -64,11 +59,11 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   // 3. The pose from the static features against the local map; keyframes and local BA.
   out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed);
   // 4. What the refinements carry into the next frame.
-  const auto upkeep = Clock::now();
+  const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)
     refinement->Observe(frame, out.tracking, tracker_.map());
-  out.refinement_upkeep_ms = MsSince(upkeep);
-  out.processing_ms = MsSince(start);
+  out.refinement_upkeep_ms = MillisecondsSince(upkeep);
+  out.processing_ms = MillisecondsSince(start);
   processed.record = MakeFrameRecord(frame, out);
   return processed;
 }

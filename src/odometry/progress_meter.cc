@@ -5,8 +5,7 @@
 namespace dynvo {
 
 ProgressMeter::ProgressMeter(size_t total, bool quiet, std::string label)
-    : total_(total), quiet_(quiet), label_(std::move(label)),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : total_(total), quiet_(quiet), label_(std::move(label)), start_(std::chrono::steady_clock::now()), last_(start_) {}
 
 void ProgressMeter::Update(size_t done) {
   if (quiet_) return;
@@ -21,12 +20,11 @@ void ProgressMeter::Finish(size_t done) {
 }
 
 void ProgressMeter::Print(size_t done) {
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double eta = rate > 0 && total_ > done ? (total_ - done) / rate : 0.0;
-  std::fprintf(stderr, "%s: frame %zu/%zu (%3.0f%%), %.1f frames/s, ETA %.0f s\n", label_.c_str(),
-               done, total_, total_ ? 100.0 * done / total_ : 100.0, rate, eta);
+  std::fprintf(stderr, "%s: frame %zu/%zu (%3.0f%%), %.1f frames/s, ETA %.0f s\n", label_.c_str(), done, total_,
+               total_ ? 100.0 * done / total_ : 100.0, rate, eta);
 }
 
 }  // namespace dynvo

@@ -28,13 +28,11 @@ constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json"};
 void PrepareOutputDir(const RunRequest& request) {
   if (request.out_dir.empty()) throw InputError("--out: an output folder is required");
   const fs::path dir(request.out_dir);
-  if (fs::exists(dir) && !fs::is_directory(dir))
-    throw InputError(request.out_dir + ": exists and is not a folder");
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(request.out_dir + ": exists and is not a folder");
   if (!request.force)
     for (const char* name : kOutputs)
       if (fs::exists(dir / name))
-        throw InputError((dir / name).string() +
-                         ": exists from an earlier run; pass --force to overwrite");
+        throw InputError((dir / name).string() + ": exists from an earlier run; pass --force to overwrite");
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(request.out_dir + ": cannot create folder: " + ec.message());
@@ -56,8 +54,8 @@ nlohmann::json Summary(std::vector<double> values) {
 }
 
 nlohmann::json CameraJson(const Camera& c) {
-  return {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy},
-          {"cx", c.cx},       {"cy", c.cy},         {"distortion", c.distortion}};
+  return {{"width", c.width}, {"height", c.height},        {"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx},
+          {"cy", c.cy},       {"distortion", c.distortion}};
 }
 
 // Collects per-frame figures for run.json.
@@ -66,8 +64,7 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
-  long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0,
-            coherent_motion_rejected = 0;
+  long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0, coherent_motion_rejected = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -114,15 +111,14 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
   report["config_file"] = request.config_path;
   report["overrides"] = request.overrides;
   report["config"] = OdometryConfigToJson(config);
-  report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()},
-                       {"timing", (out / "timing.csv").string()}};
+  report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()}, {"timing", (out / "timing.csv").string()}};
 
   return report;
 }
 
 // run.json's results: status, counts, times, memory and mask quality.
-void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, int threads,
-                   bool evaluate_masks, nlohmann::json* out) {
+void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, int threads, bool evaluate_masks,
+                   nlohmann::json* out) {
   nlohmann::json& report = *out;
   double processing_total = 0;
   for (double v : tally.processing) processing_total += v;
@@ -162,14 +158,12 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
   } else {
     report["mask_quality"] = nullptr;
   }
-
 }
 
 // Feeds every frame to `process`, frame t once frame t+1 is loaded (the triplet's backward
 // detection and the look-ahead use it), and frame t first when frame t+1 fails to load.
 // Returns the failure that ended the run, or "" when every frame was processed.
-std::string ProcessFrames(FrameLoader* loader,
-                          const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
+std::string ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
                           const RunTally& tally) {
   try {
     std::optional<LoadedFrame> pending;
@@ -247,8 +241,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   const std::string failure = ProcessFrames(&loader, process, tally);
   progress.Finish(tally.processing.size());
 
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   AddRunResults(tally, wall_s, failure, threads, evaluate_masks, &report);
   const std::string report_path = (out / "run.json").string();
   std::ofstream report_file(report_path, std::ios::trunc);

@@ -43,21 +43,18 @@ TimingCsvWriter::TimingCsvWriter(const std::string& path) : path_(path), out_(pa
 
 void TimingCsvWriter::Write(const FrameRecord& r) {
   const StageTimes& t = r.times;
-  out_ << r.index << ',' << Fixed(r.stamp, 6) << ',' << Fixed(t.load_ms, 3) << ','
-       << Fixed(t.dynamic_mask_ms, 3) << ',' << Fixed(t.features_ms, 3) << ','
-       << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ',' << Fixed(t.pose_ms, 3) << ','
-       << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ',' << Fixed(t.processing_ms, 3)
-       << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed << ','
-       << r.features_readmitted << ','
-       << Fixed(r.dynamic_ratio, 5) << ','
-       << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ','
-       << (r.mask_ok ? 1 : 0) << ',' << CsvText(r.mask_note)
-       << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches << ','
-       << r.num_inliers << ',' << r.new_points_rejected << ',' << r.coherent_motion_rejected << ','
-       << (r.keyframe ? 1 : 0) << ',';
+  out_ << r.index << ',' << Fixed(r.stamp, 6) << ',' << Fixed(t.load_ms, 3) << ',' << Fixed(t.dynamic_mask_ms, 3) << ','
+       << Fixed(t.features_ms, 3) << ',' << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ','
+       << Fixed(t.pose_ms, 3) << ',' << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ','
+       << Fixed(t.processing_ms, 3) << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed
+       << ',' << r.features_readmitted << ',' << Fixed(r.dynamic_ratio, 5) << ','
+       << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ',' << (r.mask_ok ? 1 : 0)
+       << ',' << CsvText(r.mask_note) << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ','
+       << r.num_matches << ',' << r.num_inliers << ',' << r.new_points_rejected << ',' << r.coherent_motion_rejected
+       << ',' << (r.keyframe ? 1 : 0) << ',';
   if (r.mask_quality) {
-    out_ << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5)
-         << ',' << Fixed(r.mask_quality->Iou(), 5);
+    out_ << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5) << ','
+         << Fixed(r.mask_quality->Iou(), 5);
   } else {
     out_ << ",,";
   }

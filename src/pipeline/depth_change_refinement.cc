@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/stopwatch.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "dynamic_mask/motion_compensation.h"
 #include "pipeline/static_map_refinement.h"
@@ -14,14 +15,14 @@ DepthChangeRefinement::DepthChangeRefinement(const Camera& camera, const DepthCh
 
 void DepthChangeRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   if (!pending_.valid()) return;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   const cv::Mat changed_last = pending_.Get();
   if (!changed_last.empty() && mask->has_motion) {
     const cv::Mat changed = WarpBinaryMasks({changed_last}, mask->current_from_previous, frame.gray.size())[0];
     // A change over much of the image means the poses disagree, not the scene: none then.
     if (DynamicRatio(changed) <= options_.max_share) mask->change_seeds = changed;
   }
-  mask->ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  mask->ms += MillisecondsSince(start);
 }
 
 void DepthChangeRefinement::Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap&) {
@@ -37,8 +38,8 @@ void DepthChangeRefinement::Observe(const RgbdFrame& frame, const TrackingResult
   const PastDepth& last = past_depths_.back();
   const PastDepth& earlier = past_depths_.front();
   pending_ = executor_.Submit([this, last, earlier] {
-    return DepthChangeMask(last.depth, earlier.depth, camera_, earlier.world_from_camera.inverse() * last.world_from_camera,
-                           options_);
+    return DepthChangeMask(last.depth, earlier.depth, camera_,
+                           earlier.world_from_camera.inverse() * last.world_from_camera, options_);
   });
 }
 

@@ -26,8 +26,8 @@ class DepthChangeRefinement : public MaskRefinement {
 
  private:
   struct PastDepth {
-    cv::Mat depth;            // CV_32FC1 metres
-    Pose world_from_camera;   // as estimated
+    cv::Mat depth;           // CV_32FC1 metres
+    Pose world_from_camera;  // as estimated
   };
   Camera camera_;
   DepthChangeOptions options_;

@@ -1,19 +1,10 @@
 #include "pipeline/differencing_mask_source.h"
+#include "core/stopwatch.h"
 
 #include <chrono>
 #include <utility>
 
 namespace dynvo {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-}  // namespace
-
 DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography,
                                                const DynamicMaskOptions& options, const ImageArea& image_area,
                                                Executor& executor)
@@ -22,7 +13,7 @@ DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const Homo
 DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame& frame, const cv::Mat& previous_gray,
                                                                  const TrackingPyramid& previous_pyramid) const {
   Detection detection;
-  const auto start = Clock::now();
+  const auto start = SteadyClock::now();
   DynamicMaskInput input;
   input.previous_gray = previous_gray;
   input.current_gray = frame.gray;
@@ -31,13 +22,13 @@ DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame
   input.image_area = image_area_;
   detection.result = DetectDynamicMask(input, klt_, homography_, options_, &executor_);
   detection.pyramid = input.current_pyramid;
-  detection.ms = MsSince(start);
+  detection.ms = MillisecondsSince(start);
   return detection;
 }
 
 DifferencingMaskSource::Detection DifferencingMaskSource::DetectTriplet(const RgbdFrame& frame, const RgbdFrame* next) {
   Detection detection;
-  const auto start = Clock::now();
+  const auto start = SteadyClock::now();
   DynamicMaskInput input;
   input.previous_gray = previous_gray_;
   input.current_gray = frame.gray;
@@ -56,7 +47,7 @@ DifferencingMaskSource::Detection DifferencingMaskSource::DetectTriplet(const Rg
   next_gray_ = input.next_gray;
   next_pyramid_ = input.next_pyramid;
   next_tracks_ = std::move(detection.result.next_tracks);
-  detection.ms = MsSince(start);
+  detection.ms = MillisecondsSince(start);
   return detection;
 }
 
@@ -77,11 +68,11 @@ MaskPacket DifferencingMaskSource::Compute(const MaskSourceInput& input) {
   MaskPacket packet;
   packet.frame = frame.index;
   if (previous_gray_.empty()) {
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     previous_pyramid_ = BuildTrackingPyramid(frame.gray, klt_);  // for the next call
     previous_gray_ = frame.gray;
     packet.status = MaskStatus::kFirstFrame;
-    packet.ms = MsSince(start);
+    packet.ms = MillisecondsSince(start);
     return packet;
   }
   Detection detection;
@@ -115,9 +106,8 @@ void DifferencingMaskSource::LookAhead(const RgbdFrame& current, const RgbdFrame
   ahead_.Reset();
   ahead_gray_ = next.gray;
   // Copies of the headers: the task reads nothing that Compute changes.
-  ahead_ = executor_.Submit([this, gray = current.gray, pyramid = previous_pyramid_, next] {
-    return Detect(next, gray, pyramid);
-  });
+  ahead_ = executor_.Submit(
+      [this, gray = current.gray, pyramid = previous_pyramid_, next] { return Detect(next, gray, pyramid); });
 }
 
 }  // namespace dynvo

@@ -15,8 +15,8 @@ namespace dynvo {
 class DifferencingMaskSource : public MaskSource {
  public:
   // The options must have passed Check(); `executor` must outlive the source.
-  DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography,
-                         const DynamicMaskOptions& options, const ImageArea& image_area, Executor& executor);
+  DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography, const DynamicMaskOptions& options,
+                         const ImageArea& image_area, Executor& executor);
 
   // kFirstFrame on the first call; else kComputed or kFailed (with the detector's reason).
   MaskPacket Compute(const MaskSourceInput& input) override;

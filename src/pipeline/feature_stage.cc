@@ -3,22 +3,13 @@
 #include <chrono>
 #include <utility>
 
+#include "core/stopwatch.h"
 #include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/mask_morphology.h"
 #include "features/feature_filter.h"
 #include "pipeline/mask_source.h"
 
 namespace dynvo {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-}  // namespace
-
 FeatureStage::FeatureStage(const Camera& camera, const FeatureOptions& options, const ImageArea& image_area,
                            Executor& executor)
     : camera_(camera),
@@ -32,11 +23,11 @@ void FeatureStage::Start(const RgbdFrame& frame) {
   pending_gray_ = frame.gray;
   pending_ = executor_.Submit([this, frame] {
     Extraction extraction;
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     ExtractorPool::Lease extractor = extractors_.Acquire();
     extraction.features = extractor->Extract(frame.gray, frame.depth, camera_, cv::Mat(),
                                              options_.refill_reuse_corners ? &extraction.corners : nullptr);
-    extraction.ms = MsSince(start);
+    extraction.ms = MillisecondsSince(start);
     return extraction;
   });
 }
@@ -63,30 +54,30 @@ FeaturePacket FeatureStage::Finish(const RgbdFrame& frame, const MaskPacket& mas
   FeaturePacket packet;
   packet.frame = frame.index;
   packet.features_ms = extraction.ms;
-  auto start = Clock::now();
+  auto start = SteadyClock::now();
   if (!mask.mask.empty())
     packet.split = SplitByMask(extraction.features, mask.mask);
   else
     packet.split.kept = std::move(extraction.features);
-  packet.filter_ms = MsSince(start);
+  packet.filter_ms = MillisecondsSince(start);
   // The frame as the refill describes it: with refill_from_background, the mask's pixels are the
   // static background of earlier frames, kept for the next frame (also when nothing is refilled,
   // so that what moves stays out of it).
   cv::Mat described = frame.gray;
   if (options_.refill_from_background) {
-    start = Clock::now();
+    start = SteadyClock::now();
     if (!mask.mask.empty() && mask.has_motion)
       described = FillMaskFromBackground(frame.gray, mask.mask, background_gray_, mask.current_from_previous,
                                          kBackgroundFillMarginPx, image_area_);
     background_gray_ = described;
     packet.described = described;
-    packet.features_ms += MsSince(start);
+    packet.features_ms += MillisecondsSince(start);
   }
   if (options_.refill_outside_mask && packet.split.removed.size() > 0) {
-    start = Clock::now();
+    start = SteadyClock::now();
     packet.split.kept = Refill(frame, mask.mask, described, extraction.corners);
     packet.split.kept_indices.clear();  // the kept features no longer index the first extraction
-    packet.features_ms += MsSince(start);
+    packet.features_ms += MillisecondsSince(start);
   }
   return packet;
 }

@@ -6,11 +6,16 @@ namespace dynvo {
 
 std::string ToString(MaskStatus status) {
   switch (status) {
-    case MaskStatus::kOff: return "off";
-    case MaskStatus::kFirstFrame: return "first_frame";
-    case MaskStatus::kFailed: return "failed";
-    case MaskStatus::kComputed: return "computed";
-    case MaskStatus::kGiven: return "given";
+    case MaskStatus::kOff:
+      return "off";
+    case MaskStatus::kFirstFrame:
+      return "first_frame";
+    case MaskStatus::kFailed:
+      return "failed";
+    case MaskStatus::kComputed:
+      return "computed";
+    case MaskStatus::kGiven:
+      return "given";
   }
   return "unknown";
 }

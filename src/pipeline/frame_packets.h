@@ -29,19 +29,19 @@ std::string ToString(MaskStatus status);
 struct MaskPacket {
   size_t frame = 0;
   MaskStatus status = MaskStatus::kOff;
-  std::string failure;  // kFailed: the detector's reason
-  cv::Mat mask;         // CV_8UC1, 255 = dynamic; empty = no mask
+  std::string failure;         // kFailed: the detector's reason
+  cv::Mat mask;                // CV_8UC1, 255 = dynamic; empty = no mask
   double dynamic_ratio = 0.0;  // share of `mask`'s pixels
   int threshold = -1;          // grey level the forward difference was binarised at (kComputed)
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;
   Eigen::Matrix3d current_from_previous = Eigen::Matrix3d::Identity();
-  double ms = 0.0;  // wall time of the source and the refinements
+  double ms = 0.0;       // wall time of the source and the refinements
   bool refined = false;  // a refinement changed the mask (dynamic_ratio is then recomputed)
   // Intermediate images, for observers (empty when not computed):
   cv::Mat compensated, difference, forward_mask, backward_mask;  // differencing (Fig. 1 / 3)
-  cv::Mat change_seeds;   // the depth change carried into frame t: seeds of the map occlusion
+  cv::Mat change_seeds;                             // the depth change carried into frame t: seeds of the map occlusion
   cv::Mat map_occlusion_candidates, map_occlusion;  // the carried map occlusion; what joined
 
   bool ok() const { return status == MaskStatus::kComputed || status == MaskStatus::kGiven; }
@@ -52,8 +52,8 @@ struct MaskPacket {
 // Frame t's features, split by its mask.
 struct FeaturePacket {
   size_t frame = 0;
-  FeatureSplit split;   // kept (for the pose) and removed (on the mask)
-  cv::Mat described;    // refill_from_background: frame t as the refill described it
+  FeatureSplit split;        // kept (for the pose) and removed (on the mask)
+  cv::Mat described;         // refill_from_background: frame t as the refill described it
   double features_ms = 0.0;  // extraction, background fill and refill
   double filter_ms = 0.0;    // splitting by the mask
 };

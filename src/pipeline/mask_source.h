@@ -11,10 +11,10 @@
 namespace dynvo {
 
 struct MaskSourceInput {
-  const RgbdFrame& frame;            // frame t
-  const RgbdFrame* next = nullptr;   // frame t+1 when loaded (null at the end)
-  const cv::Mat& truth_mask;         // frame t's ground-truth mask (empty when none)
-  const cv::Mat& previous_mask;      // frame t-1's final mask (after the refinements; may be empty)
+  const RgbdFrame& frame;           // frame t
+  const RgbdFrame* next = nullptr;  // frame t+1 when loaded (null at the end)
+  const cv::Mat& truth_mask;        // frame t's ground-truth mask (empty when none)
+  const cv::Mat& previous_mask;     // frame t-1's final mask (after the refinements; may be empty)
 };
 
 class MaskSource {

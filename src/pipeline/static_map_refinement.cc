@@ -3,6 +3,7 @@
 #include <chrono>
 #include <vector>
 
+#include "core/stopwatch.h"
 #include "dynamic_mask/mask_regions.h"
 #include "dynamic_mask/motion_compensation.h"
 
@@ -17,13 +18,12 @@ StaticMapRefinement::StaticMapRefinement(const Camera& camera, const MapOcclusio
     : camera_(camera), occlusion_options_(occlusion), trim_options_(trim) {}
 
 void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   const bool carry_occlusion = !occlusion_.empty() && mask->has_motion;
   const bool carry_explained = trim_options_.enabled && !explained_.empty() && mask->has_motion;
   std::vector<cv::Mat> carried(3);  // occlusion, kept occlusion, explained (empty: not carried)
   if (carry_occlusion || carry_explained)
-    carried = WarpBinaryMasks({carry_occlusion ? occlusion_ : cv::Mat(),
-                               carry_occlusion ? kept_occlusion_ : cv::Mat(),
+    carried = WarpBinaryMasks({carry_occlusion ? occlusion_ : cv::Mat(), carry_occlusion ? kept_occlusion_ : cv::Mat(),
                                carry_explained ? explained_ : cv::Mat()},
                               mask->current_from_previous, frame.gray.size());
   if (carry_occlusion) {
@@ -38,12 +38,11 @@ void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
   const cv::Mat& explained = carried[2];
-  if (!explained.empty() && !mask->mask.empty() && !frame.depth.empty() && cv::countNonZero(mask->mask) > 0)
-  {
+  if (!explained.empty() && !mask->mask.empty() && !frame.depth.empty() && cv::countNonZero(mask->mask) > 0) {
     mask->mask = TrimMaskToNearSurface(mask->mask, frame.depth, explained, trim_options_);
     mask->refined = true;
   }
-  mask->ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  mask->ms += MillisecondsSince(start);
 }
 
 void StaticMapRefinement::Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) {

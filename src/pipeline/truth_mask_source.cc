@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 
 namespace dynvo {
@@ -26,15 +27,15 @@ TruthMaskSource::TruthMaskSource(const KltOptions& klt, const HomographyOptions&
 MaskPacket TruthMaskSource::Compute(const MaskSourceInput& input) {
   const RgbdFrame& frame = input.frame;
   CheckTruthMask(frame, input.truth_mask);
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   MaskPacket packet;
   packet.frame = frame.index;
   if (estimate_motion_) {
     // Each frame's pyramid is built once and kept for the next call, as the detector does.
     const TrackingPyramid current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
     if (!previous_pyramid_.empty()) {
-      const PointTracks tracks = TrackPoints(
-          previous_pyramid_, current_pyramid, DetectCorners(previous_pyramid_, klt_, input.previous_mask), klt_);
+      const PointTracks tracks = TrackPoints(previous_pyramid_, current_pyramid,
+                                             DetectCorners(previous_pyramid_, klt_, input.previous_mask), klt_);
       const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, homography_);
       packet.has_motion = h.ok;
       packet.current_from_previous = h.current_from_previous;
@@ -44,7 +45,7 @@ MaskPacket TruthMaskSource::Compute(const MaskSourceInput& input) {
   packet.status = MaskStatus::kGiven;
   packet.mask = input.truth_mask != 0;
   packet.dynamic_ratio = DynamicRatio(packet.mask);
-  packet.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  packet.ms = MillisecondsSince(start);
   return packet;
 }
 

@@ -9,10 +9,15 @@
 namespace dynvo {
 
 PoseReprojectionCost::PoseReprojectionCost(const std::vector<Eigen::Vector2d>& observed,
-                                           const std::vector<Eigen::Vector3d>& points_in_world,
-                                           std::vector<int> use, double fx, double fy, double cx, double cy,
-                                           double huber_delta_px)
-    : observed_(observed), points_(points_in_world), use_(std::move(use)), fx_(fx), fy_(fy), cx_(cx), cy_(cy),
+                                           const std::vector<Eigen::Vector3d>& points_in_world, std::vector<int> use,
+                                           double fx, double fy, double cx, double cy, double huber_delta_px)
+    : observed_(observed),
+      points_(points_in_world),
+      use_(std::move(use)),
+      fx_(fx),
+      fy_(fy),
+      cx_(cx),
+      cy_(cy),
       delta_(huber_delta_px) {
   if (observed.size() != points_in_world.size())
     throw InputError("PoseReprojectionCost: observations and points differ in number");
@@ -25,8 +30,7 @@ PoseReprojectionCost::PoseReprojectionCost(const std::vector<Eigen::Vector2d>& o
   mutable_parameter_block_sizes()->push_back(3);
 }
 
-bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* residuals,
-                                    double** jacobians) const {
+bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   const double* q = parameters[0];  // x y z w
   const Eigen::Map<const Eigen::Vector3d> t(parameters[1]);
   double* j_q = jacobians != nullptr ? jacobians[0] : nullptr;  // rows of 4, row-major
@@ -38,9 +42,9 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
     const Eigen::Vector3d p = RotatePoint(q, points_[i]) + t;
     const bool in_front = p.z() >= 1e-6;
     const double iz = in_front ? 1.0 / p.z() : 0.0;
-    const Eigen::Vector2d e = in_front ? Eigen::Vector2d(fx_ * p.x() * iz + cx_ - observed_[i].x(),
-                                                         fy_ * p.y() * iz + cy_ - observed_[i].y())
-                                       : Eigen::Vector2d(1e3, 1e3);
+    const Eigen::Vector2d e =
+        in_front ? Eigen::Vector2d(fx_ * p.x() * iz + cx_ - observed_[i].x(), fy_ * p.y() * iz + cy_ - observed_[i].y())
+                 : Eigen::Vector2d(1e3, 1e3);
     // Huber: rho(s) = s inside, 2 delta sqrt(s) - delta^2 outside; r = w e with w^2 = rho(s) / s.
     const double s = e.squaredNorm();
     const bool outside = s > delta_squared;
@@ -59,7 +63,8 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
     }
     const Eigen::Matrix<double, 2, 3> dr_dp = dr_de * de_dp;
     if (j_q != nullptr)
-      Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>>(j_q + 8 * k) = dr_dp * RotatedPointJacobian(q, points_[i]);
+      Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>>(j_q + 8 * k) =
+          dr_dp * RotatedPointJacobian(q, points_[i]);
     if (j_t != nullptr) Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>>(j_t + 6 * k) = dr_dp;
   }
   return true;

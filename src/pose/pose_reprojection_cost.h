@@ -27,8 +27,8 @@ class PoseReprojectionCost : public ceres::CostFunction {
   // The correspondences `use` picks (indices into `observed` / `points_in_world`, which must
   // outlive the cost); `huber_delta_px` > 0.
   PoseReprojectionCost(const std::vector<Eigen::Vector2d>& observed,
-                       const std::vector<Eigen::Vector3d>& points_in_world, std::vector<int> use,
-                       double fx, double fy, double cx, double cy, double huber_delta_px);
+                       const std::vector<Eigen::Vector3d>& points_in_world, std::vector<int> use, double fx, double fy,
+                       double cx, double cy, double huber_delta_px);
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:

@@ -18,8 +18,8 @@ namespace dynvo {
 
 namespace {
 
-constexpr int kSampleSize = 4;          // EPnP minimal set used per hypothesis
-constexpr double kConfidence = 0.99;    // RANSAC stops early once this confident (ORB-SLAM)
+constexpr int kSampleSize = 4;        // EPnP minimal set used per hypothesis
+constexpr double kConfidence = 0.99;  // RANSAC stops early once this confident (ORB-SLAM)
 
 template <typename T>
 void Require(bool ok, const std::string& field, const std::string& rule, T value) {
@@ -29,8 +29,8 @@ void Require(bool ok, const std::string& field, const std::string& rule, T value
 void CheckSizes(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,
                 const char* where) {
   if (points.size() != pixels.size())
-    throw InputError(std::string(where) + ": " + std::to_string(points.size()) +
-                     " points but " + std::to_string(pixels.size()) + " pixels");
+    throw InputError(std::string(where) + ": " + std::to_string(points.size()) + " points but " +
+                     std::to_string(pixels.size()) + " pixels");
 }
 
 // Squared reprojection error in pixels; infinity behind the camera.
@@ -47,8 +47,7 @@ double SquaredError(const Eigen::Matrix3d& r, const Eigen::Vector3d& t, const Ca
 // the count and the sum of squared errors of the inliers.
 int Classify(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector2d>& pixels,
              const Camera& camera, const Pose& camera_from_world, double threshold,
-             const std::vector<uint8_t>* candidates, std::vector<uint8_t>* inliers,
-             double* sum_squared) {
+             const std::vector<uint8_t>* candidates, std::vector<uint8_t>* inliers, double* sum_squared) {
   const Eigen::Matrix3d r = camera_from_world.linear();
   const Eigen::Vector3d t = camera_from_world.translation();
   const double threshold2 = threshold * threshold;
@@ -69,8 +68,8 @@ int Classify(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen
 }
 
 // EPnP on the given correspondences; false when OpenCV fails or the result is not finite.
-bool SolveEpnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image,
-               const cv::Mat& k, Pose* camera_from_world) {
+bool SolveEpnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image, const cv::Mat& k,
+               Pose* camera_from_world) {
   cv::Mat rvec, tvec;
   bool ok = false;
   try {
@@ -119,16 +118,15 @@ struct EpnpEstimator {
 }  // namespace
 
 void PoseSolverOptions::Check() const {
-  Require(std::isfinite(ransac_threshold_px) && ransac_threshold_px > 0.0, "ransac_threshold_px",
-          "> 0", ransac_threshold_px);
+  Require(std::isfinite(ransac_threshold_px) && ransac_threshold_px > 0.0, "ransac_threshold_px", "> 0",
+          ransac_threshold_px);
   Require(ransac_iterations >= 1, "ransac_iterations", ">= 1", ransac_iterations);
   Require(min_inliers >= 4, "min_inliers", ">= 4", min_inliers);
-  Require(std::isfinite(huber_delta_px) && huber_delta_px > 0.0, "huber_delta_px", "> 0",
-          huber_delta_px);
+  Require(std::isfinite(huber_delta_px) && huber_delta_px > 0.0, "huber_delta_px", "> 0", huber_delta_px);
   Require(refine_iterations >= 1, "refine_iterations", ">= 1", refine_iterations);
   Require(refine_rounds >= 1, "refine_rounds", ">= 1", refine_rounds);
-  Require(std::isfinite(outlier_threshold_px) && outlier_threshold_px > 0.0,
-          "outlier_threshold_px", "> 0", outlier_threshold_px);
+  Require(std::isfinite(outlier_threshold_px) && outlier_threshold_px > 0.0, "outlier_threshold_px", "> 0",
+          outlier_threshold_px);
 }
 
 PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
@@ -163,16 +161,15 @@ PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
   return RefinePose(points_in_world, pixels, camera, found.model, options, &found.inliers);
 }
 
-PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
-                        const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
-                        const Pose& initial_camera_from_world, const PoseSolverOptions& options,
+PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
+                        const Camera& camera, const Pose& initial_camera_from_world, const PoseSolverOptions& options,
                         const std::vector<uint8_t>* use) {
   options.Check();
   CheckSizes(points_in_world, pixels, "RefinePose");
   const size_t n = points_in_world.size();
   if (use != nullptr && use->size() != n)
-    throw InputError("RefinePose: `use` has " + std::to_string(use->size()) + " entries for " +
-                     std::to_string(n) + " correspondences");
+    throw InputError("RefinePose: `use` has " + std::to_string(use->size()) + " entries for " + std::to_string(n) +
+                     " correspondences");
   PoseEstimate result;
   result.camera_from_world = initial_camera_from_world;
   result.inliers.assign(n, 0);
@@ -180,8 +177,7 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
   Eigen::Quaterniond q(initial_camera_from_world.linear());
   q.normalize();
   double q_xyzw[4] = {q.x(), q.y(), q.z(), q.w()};
-  double t[3] = {initial_camera_from_world.translation().x(),
-                 initial_camera_from_world.translation().y(),
+  double t[3] = {initial_camera_from_world.translation().x(), initial_camera_from_world.translation().y(),
                  initial_camera_from_world.translation().z()};
 
   std::vector<uint8_t> active(n, 0);
@@ -220,8 +216,7 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
     std::vector<uint8_t> start(n);
     for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
     std::vector<uint8_t> next_active;
-    Classify(points_in_world, pixels, camera, pose, options.outlier_threshold_px, &start,
-             &next_active, nullptr);
+    Classify(points_in_world, pixels, camera, pose, options.outlier_threshold_px, &start, &next_active, nullptr);
     // Same set as this round's: another round would solve the same problem again.
     if (next_active == active) break;
     active.swap(next_active);
@@ -230,14 +225,12 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
   double sum_squared = 0.0;
   std::vector<uint8_t> start(n);
   for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
-  result.num_inliers = Classify(points_in_world, pixels, camera, result.camera_from_world,
-                                options.outlier_threshold_px, &start, &result.inliers,
-                                &sum_squared);
-  result.rms_error_px =
-      result.num_inliers > 0 ? std::sqrt(sum_squared / result.num_inliers) : 0.0;
+  result.num_inliers = Classify(points_in_world, pixels, camera, result.camera_from_world, options.outlier_threshold_px,
+                                &start, &result.inliers, &sum_squared);
+  result.rms_error_px = result.num_inliers > 0 ? std::sqrt(sum_squared / result.num_inliers) : 0.0;
   if (result.num_inliers < options.min_inliers) {
-    result.failure = "refinement kept " + std::to_string(result.num_inliers) +
-                     " inliers, fewer than " + std::to_string(options.min_inliers);
+    result.failure = "refinement kept " + std::to_string(result.num_inliers) + " inliers, fewer than " +
+                     std::to_string(options.min_inliers);
     return result;
   }
   result.ok = true;

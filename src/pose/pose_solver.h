@@ -34,11 +34,11 @@ void BindConfigKeys(const std::string& prefix, PoseSolverOptions* options, Confi
 
 struct PoseEstimate {
   bool ok = false;
-  std::string failure;                        // why ok is false (empty when ok)
+  std::string failure;  // why ok is false (empty when ok)
   Pose camera_from_world = Pose::Identity();
-  std::vector<uint8_t> inliers;               // per correspondence, 1 = inlier
+  std::vector<uint8_t> inliers;  // per correspondence, 1 = inlier
   int num_inliers = 0;
-  double rms_error_px = 0.0;                  // reprojection RMS over inliers (pixels)
+  double rms_error_px = 0.0;  // reprojection RMS over inliers (pixels)
 };
 
 // EPnP inside a seeded RANSAC for an initial pose (4-point samples, EPnP on all inliers of each
@@ -55,9 +55,8 @@ PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
 // pose, `refine_rounds` rounds with outliers dropped between rounds; `use` (optional, per
 // correspondence) restricts the start set. Fails (ok = false) when fewer than `min_inliers`
 // inliers remain. Throws InputError when sizes differ or the options are invalid.
-PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world,
-                        const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
-                        const Pose& initial_camera_from_world, const PoseSolverOptions& options,
+PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
+                        const Camera& camera, const Pose& initial_camera_from_world, const PoseSolverOptions& options,
                         const std::vector<uint8_t>* use = nullptr);
 
 }  // namespace dynvo

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <cmath>
 
 #include "core/config_registry.h"
 #include "core/error.h"
@@ -24,8 +24,7 @@ void Require(bool ok, const std::string& field, const std::string& rule, T value
 // Feature indices bucketed by undistorted pixel on a regular grid.
 class FeatureGrid {
  public:
-  FeatureGrid(const std::vector<Eigen::Vector2d>& pixels, double width, double height,
-              double cell)
+  FeatureGrid(const std::vector<Eigen::Vector2d>& pixels, double width, double height, double cell)
       : cell_(cell),
         cols_(std::max(1, static_cast<int>(std::ceil(width / cell)))),
         rows_(std::max(1, static_cast<int>(std::ceil(height / cell)))),
@@ -80,14 +79,20 @@ void TopBins(const std::vector<std::vector<int>>& histogram, int* b1, int* b2, i
   for (int i = 0; i < static_cast<int>(histogram.size()); ++i) {
     const size_t s = histogram[i].size();
     if (s > m1) {
-      m3 = m2; *b3 = *b2;
-      m2 = m1; *b2 = *b1;
-      m1 = s; *b1 = i;
+      m3 = m2;
+      *b3 = *b2;
+      m2 = m1;
+      *b2 = *b1;
+      m1 = s;
+      *b1 = i;
     } else if (s > m2) {
-      m3 = m2; *b3 = *b2;
-      m2 = s; *b2 = i;
+      m3 = m2;
+      *b3 = *b2;
+      m2 = s;
+      *b2 = i;
     } else if (s > m3) {
-      m3 = s; *b3 = i;
+      m3 = s;
+      *b3 = i;
     }
   }
   if (m2 < 0.1 * m1) {
@@ -101,10 +106,9 @@ void TopBins(const std::vector<std::vector<int>>& histogram, int* b1, int* b2, i
 }  // namespace
 
 void MatchOptions::Check() const {
-  Require(std::isfinite(search_radius_px) && search_radius_px > 0.0, "search_radius_px", "> 0",
-          search_radius_px);
-  Require(max_descriptor_distance >= 0 && max_descriptor_distance <= 256,
-          "max_descriptor_distance", "in [0, 256]", max_descriptor_distance);
+  Require(std::isfinite(search_radius_px) && search_radius_px > 0.0, "search_radius_px", "> 0", search_radius_px);
+  Require(max_descriptor_distance >= 0 && max_descriptor_distance <= 256, "max_descriptor_distance", "in [0, 256]",
+          max_descriptor_distance);
   Require(std::isfinite(ratio) && ratio > 0.0 && ratio <= 1.0, "ratio", "in (0, 1]", ratio);
 }
 
@@ -120,12 +124,11 @@ int DescriptorDistance(const unsigned char* a, const unsigned char* b) {
 }
 
 std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
-                                     const cv::Mat& point_descriptors,
-                                     const FrameFeatures& features, const Camera& camera,
-                                     const Pose& predicted_camera_from_world,
+                                     const cv::Mat& point_descriptors, const FrameFeatures& features,
+                                     const Camera& camera, const Pose& predicted_camera_from_world,
                                      const MatchOptions& options) {
-  return MatchByProjection(points_in_world, point_descriptors, features, camera,
-                           predicted_camera_from_world, options, nullptr);
+  return MatchByProjection(points_in_world, point_descriptors, features, camera, predicted_camera_from_world, options,
+                           nullptr);
 }
 
 namespace {
@@ -200,8 +203,7 @@ std::vector<Match> RotationConsistent(const std::vector<Match>& matches, const F
                                       const std::vector<float>& point_angles_deg) {
   std::vector<std::vector<int>> histogram(kHistogramBins);
   for (int m = 0; m < static_cast<int>(matches.size()); ++m) {
-    double rotation_deg =
-        features.keypoints[matches[m].feature_index].angle - point_angles_deg[matches[m].point_index];
+    double rotation_deg = features.keypoints[matches[m].feature_index].angle - point_angles_deg[matches[m].point_index];
     rotation_deg = std::fmod(rotation_deg, 360.0);
     if (rotation_deg < 0.0) rotation_deg += 360.0;
     const int bin = static_cast<int>(std::lround(rotation_deg * kHistogramBins / 360.0)) % kHistogramBins;
@@ -223,16 +225,14 @@ std::vector<Match> RotationConsistent(const std::vector<Match>& matches, const F
 }  // namespace
 
 std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
-                                     const cv::Mat& point_descriptors,
-                                     const FrameFeatures& features, const Camera& camera,
-                                     const Pose& predicted_camera_from_world,
-                                     const MatchOptions& options,
-                                     const std::vector<float>* point_angles_deg) {
+                                     const cv::Mat& point_descriptors, const FrameFeatures& features,
+                                     const Camera& camera, const Pose& predicted_camera_from_world,
+                                     const MatchOptions& options, const std::vector<float>* point_angles_deg) {
   options.Check();
   CheckMatchInputs(points_in_world, point_descriptors, features, point_angles_deg);
   if (points_in_world.empty() || features.size() == 0) return {};
-  std::vector<Match> matches = NearestByDescriptor(points_in_world, point_descriptors, features, camera,
-                                                   predicted_camera_from_world, options);
+  std::vector<Match> matches =
+      NearestByDescriptor(points_in_world, point_descriptors, features, camera, predicted_camera_from_world, options);
   if (options.check_orientation && point_angles_deg != nullptr && !matches.empty())
     matches = RotationConsistent(matches, features, *point_angles_deg);
   std::sort(matches.begin(), matches.end(),
@@ -241,7 +241,8 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
 }
 
 void BindConfigKeys(const std::string& prefix, MatchOptions* o, ConfigRegistry* r) {
-  r->Bind(prefix + ".search_radius_px", &o->search_radius_px, "search window around a map point's predicted projection");
+  r->Bind(prefix + ".search_radius_px", &o->search_radius_px,
+          "search window around a map point's predicted projection");
   r->Bind(prefix + ".ratio", &o->ratio, "best / second-best descriptor distance must be below");
 }
 

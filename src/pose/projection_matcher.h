@@ -16,10 +16,10 @@ namespace dynvo {
 class ConfigRegistry;
 
 struct MatchOptions {
-  double search_radius_px = 15.0;      // window around the predicted projection (pixels, level 0)
-  int max_descriptor_distance = 64;    // largest Hamming distance accepted (bits, 0..256)
-  double ratio = 0.9;                  // best / second best distance must be below this (0..1]
-  bool check_orientation = true;       // rotation-consistency histogram (ORB-SLAM)
+  double search_radius_px = 15.0;    // window around the predicted projection (pixels, level 0)
+  int max_descriptor_distance = 64;  // largest Hamming distance accepted (bits, 0..256)
+  double ratio = 0.9;                // best / second best distance must be below this (0..1]
+  bool check_orientation = true;     // rotation-consistency histogram (ORB-SLAM)
 
   // Throws InputError naming the key "tracking.matching.<field>" when a field is out of range.
   void Check() const;
@@ -42,9 +42,8 @@ struct Match {
 // orientation check. Throws InputError when descriptor rows and points disagree or the options
 // are invalid.
 std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
-                                     const cv::Mat& point_descriptors,
-                                     const FrameFeatures& features, const Camera& camera,
-                                     const Pose& predicted_camera_from_world,
+                                     const cv::Mat& point_descriptors, const FrameFeatures& features,
+                                     const Camera& camera, const Pose& predicted_camera_from_world,
                                      const MatchOptions& options);
 
 // As above, given the ORB angle (degrees) of each point's reference observation: when
@@ -52,11 +51,9 @@ std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_
 // dominant bins of a 30-bin rotation histogram are dropped (ORB-SLAM). Null angles skip the
 // check.
 std::vector<Match> MatchByProjection(const std::vector<Eigen::Vector3d>& points_in_world,
-                                     const cv::Mat& point_descriptors,
-                                     const FrameFeatures& features, const Camera& camera,
-                                     const Pose& predicted_camera_from_world,
-                                     const MatchOptions& options,
-                                     const std::vector<float>* point_angles_deg);
+                                     const cv::Mat& point_descriptors, const FrameFeatures& features,
+                                     const Camera& camera, const Pose& predicted_camera_from_world,
+                                     const MatchOptions& options, const std::vector<float>* point_angles_deg);
 
 // Hamming distance of two 32-byte ORB descriptors (rows of CV_8U matrices).
 int DescriptorDistance(const unsigned char* a, const unsigned char* b);

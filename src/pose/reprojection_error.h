@@ -27,8 +27,8 @@ void WorldToCamera(const T* q_xyzw, const T* t, const T* point_in_world, T* p) {
 }
 
 template <typename T>
-bool ProjectResidual(const T* q_xyzw, const T* t, const T* point_in_world, double fx, double fy,
-                     double cx, double cy, const Eigen::Vector2d& observed, T* residual) {
+bool ProjectResidual(const T* q_xyzw, const T* t, const T* point_in_world, double fx, double fy, double cx, double cy,
+                     const Eigen::Vector2d& observed, T* residual) {
   T p[3];
   WorldToCamera(q_xyzw, t, point_in_world, p);
   if (p[2] < T(1e-6)) {
@@ -55,8 +55,7 @@ class ReprojectionError {
     return internal::ProjectResidual(q, t, point_in_world, fx_, fy_, cx_, cy_, observed_, residual);
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, double fx, double fy,
-                                     double cx, double cy) {
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, double fx, double fy, double cx, double cy) {
     return new ceres::AutoDiffCostFunction<ReprojectionError, 2, 4, 3, 3>(
         new ReprojectionError(observed, fx, fy, cx, cy));
   }
@@ -70,8 +69,8 @@ class ReprojectionError {
 // refinement). Parameter blocks: q[4], t[3].
 class PoseReprojectionError {
  public:
-  PoseReprojectionError(const Eigen::Vector2d& observed, const Eigen::Vector3d& point_in_world,
-                        double fx, double fy, double cx, double cy)
+  PoseReprojectionError(const Eigen::Vector2d& observed, const Eigen::Vector3d& point_in_world, double fx, double fy,
+                        double cx, double cy)
       : observed_(observed), point_(point_in_world), fx_(fx), fy_(fy), cx_(cx), cy_(cy) {}
 
   template <typename T>
@@ -80,9 +79,8 @@ class PoseReprojectionError {
     return internal::ProjectResidual(q, t, point, fx_, fy_, cx_, cy_, observed_, residual);
   }
 
-  static ceres::CostFunction* Create(const Eigen::Vector2d& observed,
-                                     const Eigen::Vector3d& point_in_world, double fx, double fy,
-                                     double cx, double cy) {
+  static ceres::CostFunction* Create(const Eigen::Vector2d& observed, const Eigen::Vector3d& point_in_world, double fx,
+                                     double fy, double cx, double cy) {
     return new ceres::AutoDiffCostFunction<PoseReprojectionError, 2, 4, 3>(
         new PoseReprojectionError(observed, point_in_world, fx, fy, cx, cy));
   }

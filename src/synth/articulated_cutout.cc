@@ -57,12 +57,18 @@ cv::Mat LabelParts(const cv::Mat& alpha, double centre, double half_width, const
       if (a[x] < 128) continue;
       const bool left = x < centre - half_width, right = x >= centre + half_width;
       BodyPart part;
-      if (y < r.neck) part = kHead;
-      else if (left && y < r.hand) part = y < r.elbow ? kLeftUpperArm : kLeftForearm;
-      else if (right && y < r.hand) part = y < r.elbow ? kRightUpperArm : kRightForearm;
-      else if (y < r.hip) part = kTorso;
-      else if (x < centre) part = y < r.knee ? kLeftThigh : kLeftShin;
-      else part = y < r.knee ? kRightThigh : kRightShin;
+      if (y < r.neck)
+        part = kHead;
+      else if (left && y < r.hand)
+        part = y < r.elbow ? kLeftUpperArm : kLeftForearm;
+      else if (right && y < r.hand)
+        part = y < r.elbow ? kRightUpperArm : kRightForearm;
+      else if (y < r.hip)
+        part = kTorso;
+      else if (x < centre)
+        part = y < r.knee ? kLeftThigh : kLeftShin;
+      else
+        part = y < r.knee ? kRightThigh : kRightShin;
       l[x] = static_cast<uchar>(part);
     }
   }
@@ -226,7 +232,8 @@ std::vector<TexturedQuad> PoseArticulatedCutout(const ArticulatedCutout& doll, c
   for (BodyPart shin : {kLeftShin, kRightShin}) {
     const TexturedQuad q = RestQuad(doll.parts[shin]);
     if (!q.texture) continue;
-    for (const Eigen::Vector3d& corner : {Eigen::Vector3d(q.origin + q.edge_v), Eigen::Vector3d(q.origin + q.edge_u + q.edge_v)})
+    for (const Eigen::Vector3d& corner :
+         {Eigen::Vector3d(q.origin + q.edge_v), Eigen::Vector3d(q.origin + q.edge_u + q.edge_v)})
       lowest = std::min(lowest, (motion[shin] * corner).z());
   }
   if (!std::isfinite(lowest)) lowest = 0;

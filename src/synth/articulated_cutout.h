@@ -18,19 +18,26 @@
 namespace dynvo {
 
 enum BodyPart {
-  kTorso, kHead,
-  kLeftUpperArm, kLeftForearm, kRightUpperArm, kRightForearm,
-  kLeftThigh, kLeftShin, kRightThigh, kRightShin,
+  kTorso,
+  kHead,
+  kLeftUpperArm,
+  kLeftForearm,
+  kRightUpperArm,
+  kRightForearm,
+  kLeftThigh,
+  kLeftShin,
+  kRightThigh,
+  kRightShin,
   kNumBodyParts
 };
 
 struct ArticulatedCutout {
   struct Part {
     std::shared_ptr<const Texture> texture;  // BGRA: the part's pixels of the photo, with relief
-    Eigen::Vector2d top_left{0, 0};  // metres, doll (x, z) of the texture's top-left corner at rest
-    Eigen::Vector2d size{0, 0};      // metres, texture width and height
-    Eigen::Vector2d joint{0, 0};     // metres, doll (x, z) of the joint the part turns about
-    double behind_m = 0;             // metres along doll y: limbs sit just behind the torso
+    Eigen::Vector2d top_left{0, 0};          // metres, doll (x, z) of the texture's top-left corner at rest
+    Eigen::Vector2d size{0, 0};              // metres, texture width and height
+    Eigen::Vector2d joint{0, 0};             // metres, doll (x, z) of the joint the part turns about
+    double behind_m = 0;                     // metres along doll y: limbs sit just behind the torso
   };
   std::array<Part, kNumBodyParts> parts;  // a part without pixels has no texture
   double height_m = 1.7;                  // metres, head to feet

@@ -35,8 +35,7 @@ Pose StartPose() {
 
 // Rotation about the camera's own axes (roll about z, pitch about x, yaw about y).
 Eigen::Matrix3d CameraRpy(double roll, double pitch, double yaw) {
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
       .toRotationMatrix();
 }
@@ -53,10 +52,14 @@ CameraPathPreset ParseCameraPathPreset(const std::string& name, const std::strin
 
 std::string CameraPathPresetName(CameraPathPreset preset) {
   switch (preset) {
-    case CameraPathPreset::kStatic: return "static";
-    case CameraPathPreset::kXyz: return "xyz";
-    case CameraPathPreset::kHalfsphere: return "halfsphere";
-    case CameraPathPreset::kRpy: return "rpy";
+    case CameraPathPreset::kStatic:
+      return "static";
+    case CameraPathPreset::kXyz:
+      return "xyz";
+    case CameraPathPreset::kHalfsphere:
+      return "halfsphere";
+    case CameraPathPreset::kRpy:
+      return "rpy";
   }
   return "static";
 }
@@ -68,22 +71,22 @@ Pose CameraPathPose(CameraPathPreset preset, double s) {
     case CameraPathPreset::kStatic: {
       const Eigen::Vector3d jitter(0.002 * Wave(s, 3.1), 0.0015 * Wave(s, 4.3, 1.0), 0.002 * Wave(s, 2.7, 2.0));
       p.translation() += jitter;
-      p.linear() = start.linear() * CameraRpy(Deg(0.2) * Wave(s, 3.7), Deg(0.25) * Wave(s, 2.9, 0.5),
-                                              Deg(0.2) * Wave(s, 4.1, 1.5));
+      p.linear() = start.linear() *
+                   CameraRpy(Deg(0.2) * Wave(s, 3.7), Deg(0.25) * Wave(s, 2.9, 0.5), Deg(0.2) * Wave(s, 4.1, 1.5));
       break;
     }
     case CameraPathPreset::kXyz: {
       // Each world axis in turn dominates, like the hand-held TUM xyz runs.
       const Eigen::Vector3d offset(0.20 * Wave(s, 6.0), 0.15 * Wave(s, 9.0, 0.7), 0.15 * Wave(s, 7.5, 1.9));
       p.translation() += offset;
-      p.linear() = start.linear() * CameraRpy(Deg(1.5) * Wave(s, 5.3), Deg(1.5) * Wave(s, 6.1, 0.4),
-                                              Deg(1.5) * Wave(s, 7.1, 1.1));
+      p.linear() = start.linear() *
+                   CameraRpy(Deg(1.5) * Wave(s, 5.3), Deg(1.5) * Wave(s, 6.1, 0.4), Deg(1.5) * Wave(s, 7.1, 1.1));
       break;
     }
     case CameraPathPreset::kRpy: {
       p.translation() += Eigen::Vector3d(0.01 * Wave(s, 5.0), 0.01 * Wave(s, 6.0), 0.01 * Wave(s, 7.0));
-      p.linear() = start.linear() * CameraRpy(Deg(12) * Wave(s, 5.1, 0.3), Deg(10) * Wave(s, 7.3, 1.2),
-                                              Deg(15) * Wave(s, 6.0));
+      p.linear() =
+          start.linear() * CameraRpy(Deg(12) * Wave(s, 5.1, 0.3), Deg(10) * Wave(s, 7.3, 1.2), Deg(15) * Wave(s, 6.0));
       break;
     }
     case CameraPathPreset::kHalfsphere: {

@@ -21,13 +21,20 @@ struct PartGeometry {
 PartGeometry Geometry(Part part, double h) {
   const double s = h / 1.7;
   switch (part) {
-    case kLeftLeg: return {{-0.08 * s, -0.08 * s, -0.86 * s}, {0.08 * s, 0.08 * s, 0}, {-0.1 * s, 0, 0.86 * s}};
-    case kRightLeg: return {{-0.08 * s, -0.08 * s, -0.86 * s}, {0.08 * s, 0.08 * s, 0}, {0.1 * s, 0, 0.86 * s}};
-    case kTorso: return {{-0.19 * s, -0.12 * s, 0}, {0.19 * s, 0.12 * s, 0.58 * s}, {0, 0, 0.86 * s}};
-    case kLeftArm: return {{-0.055 * s, -0.06 * s, -0.6 * s}, {0.055 * s, 0.06 * s, 0}, {-0.25 * s, 0, 1.42 * s}};
-    case kRightArm: return {{-0.055 * s, -0.06 * s, -0.6 * s}, {0.055 * s, 0.06 * s, 0}, {0.25 * s, 0, 1.42 * s}};
-    case kHead: return {{-0.1 * s, -0.11 * s, 0.02 * s}, {0.1 * s, 0.11 * s, 0.26 * s}, {0, 0, 1.44 * s}};
-    default: return {};
+    case kLeftLeg:
+      return {{-0.08 * s, -0.08 * s, -0.86 * s}, {0.08 * s, 0.08 * s, 0}, {-0.1 * s, 0, 0.86 * s}};
+    case kRightLeg:
+      return {{-0.08 * s, -0.08 * s, -0.86 * s}, {0.08 * s, 0.08 * s, 0}, {0.1 * s, 0, 0.86 * s}};
+    case kTorso:
+      return {{-0.19 * s, -0.12 * s, 0}, {0.19 * s, 0.12 * s, 0.58 * s}, {0, 0, 0.86 * s}};
+    case kLeftArm:
+      return {{-0.055 * s, -0.06 * s, -0.6 * s}, {0.055 * s, 0.06 * s, 0}, {-0.25 * s, 0, 1.42 * s}};
+    case kRightArm:
+      return {{-0.055 * s, -0.06 * s, -0.6 * s}, {0.055 * s, 0.06 * s, 0}, {0.25 * s, 0, 1.42 * s}};
+    case kHead:
+      return {{-0.1 * s, -0.11 * s, 0.02 * s}, {0.1 * s, 0.11 * s, 0.26 * s}, {0, 0, 1.44 * s}};
+    default:
+      return {};
   }
 }
 
@@ -43,8 +50,10 @@ Scenario ParseScenario(const std::string& name, const std::string& key) {
   if (name == "tum_toward") return Scenario::kTumToward;
   if (name == "tum_away") return Scenario::kTumAway;
   if (name == "tum_sitting") return Scenario::kTumSitting;
-  throw InputError(key + " must be one of none, walking_across, walking_toward, two_crossing, "
-                         "sitting_sway, tum_walking, tum_toward, tum_away, tum_sitting, got '" + name + "'");
+  throw InputError(key +
+                   " must be one of none, walking_across, walking_toward, two_crossing, "
+                   "sitting_sway, tum_walking, tum_toward, tum_away, tum_sitting, got '" +
+                   name + "'");
 }
 
 bool IsTumScenario(Scenario scenario) {
@@ -54,15 +63,24 @@ bool IsTumScenario(Scenario scenario) {
 
 std::string ScenarioName(Scenario scenario) {
   switch (scenario) {
-    case Scenario::kNone: return "none";
-    case Scenario::kWalkingAcross: return "walking_across";
-    case Scenario::kWalkingToward: return "walking_toward";
-    case Scenario::kTwoCrossing: return "two_crossing";
-    case Scenario::kSittingSway: return "sitting_sway";
-    case Scenario::kTumWalking: return "tum_walking";
-    case Scenario::kTumToward: return "tum_toward";
-    case Scenario::kTumAway: return "tum_away";
-    case Scenario::kTumSitting: return "tum_sitting";
+    case Scenario::kNone:
+      return "none";
+    case Scenario::kWalkingAcross:
+      return "walking_across";
+    case Scenario::kWalkingToward:
+      return "walking_toward";
+    case Scenario::kTwoCrossing:
+      return "two_crossing";
+    case Scenario::kSittingSway:
+      return "sitting_sway";
+    case Scenario::kTumWalking:
+      return "tum_walking";
+    case Scenario::kTumToward:
+      return "tum_toward";
+    case Scenario::kTumAway:
+      return "tum_away";
+    case Scenario::kTumSitting:
+      return "tum_sitting";
   }
   return "none";
 }
@@ -78,16 +96,21 @@ MovingPerson MakePerson(int object_id, double height_m, std::uint32_t seed) {
     const PartGeometry g = Geometry(static_cast<Part>(p), height_m);
     TextureKind kind = TextureKind::kClothes;
     std::uint32_t tex_seed = seed * 31 + 7;  // shirt shared by torso and arms
-    if (p == kLeftLeg || p == kRightLeg) { kind = TextureKind::kDenim; tex_seed = seed * 31 + 3; }
-    if (p == kHead) { kind = TextureKind::kSkin; tex_seed = seed * 31 + 5; }
+    if (p == kLeftLeg || p == kRightLeg) {
+      kind = TextureKind::kDenim;
+      tex_seed = seed * 31 + 3;
+    }
+    if (p == kHead) {
+      kind = TextureKind::kSkin;
+      tex_seed = seed * 31 + 5;
+    }
     AddBox(g.min, g.max, Pose::Identity(), kind, texel, tex_seed + static_cast<std::uint32_t>(p), object_id,
            &person.parts);
   }
   return person;
 }
 
-void PersonPlacement(const MovingPerson& person, double seconds, Eigen::Vector2d* position,
-                     double* heading_rad) {
+void PersonPlacement(const MovingPerson& person, double seconds, Eigen::Vector2d* position, double* heading_rad) {
   const PersonPath& path = person.path;
   const Eigen::Vector2d d = path.to - path.from;
   const double length = d.norm();
@@ -114,8 +137,8 @@ std::vector<TexturedQuad> PersonQuadsAt(const MovingPerson& person, double secon
   const PersonPath& path = person.path;
   double swing = 0, sway_x = 0, sway_y = 0, head_turn = 0, bob = 0;
   if (path.seated) {
-    sway_x = 0.09 * std::sin(2 * kPi * seconds / 3.3);   // radians, sideways lean
-    sway_y = 0.06 * std::sin(2 * kPi * seconds / 4.7);   // radians, forward lean
+    sway_x = 0.09 * std::sin(2 * kPi * seconds / 3.3);  // radians, sideways lean
+    sway_y = 0.06 * std::sin(2 * kPi * seconds / 4.7);  // radians, forward lean
     head_turn = 0.35 * std::sin(2 * kPi * seconds / 5.9);
   } else if (path.speed_mps > 0) {
     const double stride = 0.7;  // metres per step pair / 2
@@ -140,8 +163,9 @@ std::vector<TexturedQuad> PersonQuadsAt(const MovingPerson& person, double secon
         r = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
       } else {
         // Upper body pivots about the hips, lowered by the seat.
-        const Eigen::Matrix3d lean = (Eigen::AngleAxisd(sway_x, Eigen::Vector3d::UnitY()) *
-                                      Eigen::AngleAxisd(sway_y, Eigen::Vector3d::UnitX())).toRotationMatrix();
+        const Eigen::Matrix3d lean =
+            (Eigen::AngleAxisd(sway_x, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(sway_y, Eigen::Vector3d::UnitX()))
+                .toRotationMatrix();
         const Eigen::Vector3d hip(0, 0, 0.47 * s);
         const Eigen::Vector3d joint_seated = g.joint - Eigen::Vector3d(0, 0, 0.86 * s - 0.47 * s);
         body_from_part.translation() = hip + lean * (joint_seated - hip);
@@ -170,7 +194,8 @@ std::vector<TexturedQuad> PersonQuadsAt(const MovingPerson& person, double secon
 std::vector<MovingPerson> MakeScenarioPeople(Scenario scenario, std::uint32_t seed) {
   std::vector<MovingPerson> people;
   switch (scenario) {
-    case Scenario::kNone: break;
+    case Scenario::kNone:
+      break;
     case Scenario::kWalkingAcross: {
       MovingPerson p = MakePerson(1, 1.72, seed + 1);
       p.path.from = {-3.0, 2.3};
@@ -212,7 +237,8 @@ std::vector<MovingPerson> MakeScenarioPeople(Scenario scenario, std::uint32_t se
       people.push_back(p);
       break;
     }
-    default: break;  // the TUM scenarios' people are articulated photos (synth/stage_people.h)
+    default:
+      break;  // the TUM scenarios' people are articulated photos (synth/stage_people.h)
   }
   return people;
 }

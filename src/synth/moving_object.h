@@ -20,10 +20,10 @@ enum class Scenario {
   kSittingSway,    // a person seated behind a desk sways and turns (low dynamic)
   // As TUM films its dynamic sequences: articulated people from photos, in view from the
   // first frame, 1-3 m from the camera (see synth/stage_people.h).
-  kTumWalking,     // two people walking across and around the scene
-  kTumToward,      // one person walking toward the camera along the optical axis, then back
-  kTumAway,        // one person walking away from the camera along the optical axis, then back
-  kTumSitting,     // two seated people moving head and arms; one stands up and sits down
+  kTumWalking,  // two people walking across and around the scene
+  kTumToward,   // one person walking toward the camera along the optical axis, then back
+  kTumAway,     // one person walking away from the camera along the optical axis, then back
+  kTumSitting,  // two seated people moving head and arms; one stands up and sits down
 };
 
 // True for the kTum* scenarios (articulated photo people, in view from the first frame).
@@ -37,19 +37,19 @@ std::string ScenarioName(Scenario scenario);
 
 // A person walking back and forth between two floor points (ping-pong), or seated.
 struct PersonPath {
-  Eigen::Vector2d from{0, 0};  // metres, floor position (x, y) at the start
-  Eigen::Vector2d to{0, 0};    // metres, turning point
-  double speed_mps = 1.0;      // metres per second along the path (0: stands at `from`)
-  double start_offset_s = 0.0; // seconds already walked at time 0
-  bool seated = false;         // seated: sways about the hips instead of walking
-  double facing_rad = 0.0;     // seated only: heading (0 faces +y, pi faces the camera)
+  Eigen::Vector2d from{0, 0};   // metres, floor position (x, y) at the start
+  Eigen::Vector2d to{0, 0};     // metres, turning point
+  double speed_mps = 1.0;       // metres per second along the path (0: stands at `from`)
+  double start_offset_s = 0.0;  // seconds already walked at time 0
+  bool seated = false;          // seated: sways about the hips instead of walking
+  double facing_rad = 0.0;      // seated only: heading (0 faces +y, pi faces the camera)
 };
 
 // One person: body dimensions, textures and path.
 struct MovingPerson {
-  int object_id = 1;           // > 0, written into the renderer's object buffer
-  double height_m = 1.7;       // metres, top of head when standing
-  double width_m = 0.5;        // metres, shoulder width including arms
+  int object_id = 1;      // > 0, written into the renderer's object buffer
+  double height_m = 1.7;  // metres, top of head when standing
+  double width_m = 0.5;   // metres, shoulder width including arms
   PersonPath path;
   std::vector<TexturedQuad> parts;  // body quads in the body frame at rest (see .cc)
 };
@@ -62,8 +62,7 @@ MovingPerson MakePerson(int object_id, double height_m, std::uint32_t seed);
 std::vector<TexturedQuad> PersonQuadsAt(const MovingPerson& person, double seconds);
 
 // The floor position and heading (radians, 0 = +y) of the person at `seconds`.
-void PersonPlacement(const MovingPerson& person, double seconds, Eigen::Vector2d* position,
-                     double* heading_rad);
+void PersonPlacement(const MovingPerson& person, double seconds, Eigen::Vector2d* position, double* heading_rad);
 
 // The people of a scenario in the synthetic room, deterministic from the seed.
 std::vector<MovingPerson> MakeScenarioPeople(Scenario scenario, std::uint32_t seed);

@@ -107,8 +107,8 @@ std::vector<ArticulatedCutout> MakeDolls(const std::vector<PersonCutout>& cutout
 }
 
 // PlanInsertion with the dolls of `photos` cut-outs already made (MakeDolls).
-InsertionPlan PlanWithDolls(const InsertionOptions& options, const std::vector<ArticulatedCutout>& dolls,
-                            size_t photos, const Trajectory& groundtruth, double first_stamp, double last_stamp,
+InsertionPlan PlanWithDolls(const InsertionOptions& options, const std::vector<ArticulatedCutout>& dolls, size_t photos,
+                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
                             const Camera& camera) {
   options.Check();
   InsertionPlan plan;
@@ -209,7 +209,6 @@ cv::Mat ReadImageOfCamera(const std::string& path, int type, const Camera& camer
   return image;
 }
 
-
 // The distance of the people: for the TUM presets, the farthest in 0.7-3 m at which they cover
 // at least a fifth of the image (median over a few spread frames, the first among them; TUM's
 // people cover 10-50%), else the one at which they cover the most. For the other presets, the
@@ -239,7 +238,8 @@ double ChooseDistance(const InsertionOptions& options, const std::vector<Articul
       if (!InterpolatePose(sequence.groundtruth(), pairs.rgb_stamps[i], options.max_pose_gap_s, &world_from_camera))
         continue;
       cv::Mat bgr(real_depth.size(), CV_8UC3), depth16 = real_depth.clone(), ids;
-      const RenderResult people = renderer.Render(InsertionQuadsAt(plan, pairs.rgb_stamps[i]), world_from_camera.inverse());
+      const RenderResult people =
+          renderer.Render(InsertionQuadsAt(plan, pairs.rgb_stamps[i]), world_from_camera.inverse());
       coverage.push_back(double(CompositePeople(people, sequence.depth_factor(), &bgr, &depth16, &ids)) / ids.total());
     }
     double sum = 0;
@@ -300,9 +300,10 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
   const Renderer renderer(camera);
   InsertionSummary summary;
   PeopleLabels labels("dynvo-insert-people");
-  std::string masks_list = "# dynamic masks (255 = pixel of an inserted person), one per color image\n"
-                           "# people inserted by dynvo-insert-people into " + sequence.name() +
-                           "\n# timestamp filename\n";
+  std::string masks_list =
+      "# dynamic masks (255 = pixel of an inserted person), one per color image\n"
+      "# people inserted by dynvo-insert-people into " +
+      sequence.name() + "\n# timestamp filename\n";
   for (size_t i = 0; i < pairs.rgb.size(); ++i) {
     const double stamp = pairs.rgb_stamps[i];
     const std::string mask_name = "masks/" + FormatStamp(stamp) + ".png";

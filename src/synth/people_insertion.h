@@ -26,16 +26,16 @@ namespace dynvo {
 
 struct InsertionOptions {
   Scenario preset = Scenario::kTumWalking;  // any scenario but none (moving_object.h)
-  double person_height_m = 1.7;   // metres
-  double distance_m = 0.0;        // metres in front of the reference camera: walking line / spot;
-                                  // 0: chosen (TUM presets: in 1-3 m, covering a fifth of the
-                                  // image; others: in 1-4 m, showing the most of the bodies)
-  double walk_speed_mps = 1.0;    // metres per second
-  double camera_height_m = 0;     // metres of the reference camera above the people's floor; 0: the
-                                  // people's mid-height on its optical axis at distance_m (TUM
-                                  // presets: people in the middle of the view), else 1.5
-  double max_pose_gap_s = 0.1;    // seconds: frames farther from groundtruth samples get no people
-  std::uint32_t seed = 1;         // depth noise of the people
+  double person_height_m = 1.7;             // metres
+  double distance_m = 0.0;                  // metres in front of the reference camera: walking line / spot;
+                                            // 0: chosen (TUM presets: in 1-3 m, covering a fifth of the
+                                            // image; others: in 1-4 m, showing the most of the bodies)
+  double walk_speed_mps = 1.0;              // metres per second
+  double camera_height_m = 0;               // metres of the reference camera above the people's floor; 0: the
+                                            // people's mid-height on its optical axis at distance_m (TUM
+                                            // presets: people in the middle of the view), else 1.5
+  double max_pose_gap_s = 0.1;              // seconds: frames farther from groundtruth samples get no people
+  std::uint32_t seed = 1;                   // depth noise of the people
 
   // Throws InputError naming the key ("insert.distance_m must be in [0.5, 20], got 0").
   void Check() const;
@@ -57,8 +57,7 @@ struct InsertionPlan {
 // cut-outs in turn. Throws InputError when the groundtruth does not cover the middle of the
 // sequence, there is no cut-out or the options are invalid.
 InsertionPlan PlanInsertion(const InsertionOptions& options, const std::vector<PersonCutout>& cutouts,
-                            const Trajectory& groundtruth, double first_stamp, double last_stamp,
-                            const Camera& camera);
+                            const Trajectory& groundtruth, double first_stamp, double last_stamp, const Camera& camera);
 
 // The people's quads (object ids 1, 2, ...) in the world at `stamp`.
 std::vector<TexturedQuad> InsertionQuadsAt(const InsertionPlan& plan, double stamp);
@@ -80,9 +79,9 @@ struct InsertionSummary {
   int frames_with_people = 0;   // frames whose mask is not empty
   int frames_without_pose = 0;  // frames left untouched for lack of groundtruth
   double mean_dynamic_ratio = 0;
-  double median_coverage = 0;   // median over frames of the share of the image people cover
+  double median_coverage = 0;  // median over frames of the share of the image people cover
   int first_frame_with_people = -1;
-  double distance_m = 0;        // metres, the walking distance used (chosen when options say 0)
+  double distance_m = 0;  // metres, the walking distance used (chosen when options say 0)
 };
 
 // Reads the TUM folder `dataset` (raw images, raw camera: camera.json, folder name or ROS

@@ -23,8 +23,8 @@ PersonCutout CutoutFromMask(const cv::Mat& bgr, const cv::Mat& mask, const std::
 PersonCutout LoadPersonCutout(const std::string& image_path, const std::string& mask_path);
 
 // Segments the upright person inside `box` with GrabCut (`iterations` rounds, deterministic from
-// `seed`; the box's middle column is taken as surely the person). Throws InputError naming `source` when the box is not inside the image or
-// nothing is segmented.
+// `seed`; the box's middle column is taken as surely the person). Throws InputError naming `source` when the box is not
+// inside the image or nothing is segmented.
 PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
                                const std::string& source);
 

@@ -14,9 +14,7 @@ namespace {
 
 using Rng = std::mt19937;
 
-double Uniform(Rng& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+double Uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 int UniformInt(Rng& rng, int lo, int hi) {  // inclusive; lo when the range is empty
   return std::uniform_int_distribution<int>(lo, std::max(lo, hi))(rng);
 }
@@ -56,8 +54,8 @@ void AddNoise(cv::Mat& image, const cv::Mat& noise, double strength) {
 }
 
 void RandomText(cv::Mat& image, Rng& rng, int count, double scale_lo, double scale_hi) {
-  static const char* kWords[] = {"DYNVO", "EXIT", "LAB 3", "TUM", "RGB-D", "FRAGILE", "42",
-                                 "NO 7", "KEEP DRY", "A-113", "BOOK", "MAP", "2012", "XYZ"};
+  static const char* kWords[] = {"DYNVO", "EXIT",     "LAB 3", "TUM",  "RGB-D", "FRAGILE", "42",
+                                 "NO 7",  "KEEP DRY", "A-113", "BOOK", "MAP",   "2012",    "XYZ"};
   for (int i = 0; i < count; ++i) {
     const std::string word = kWords[UniformInt(rng, 0, 13)];
     const cv::Point at(UniformInt(rng, 0, std::max(1, image.cols - 20)),
@@ -79,7 +77,9 @@ void Poster(cv::Mat& image, cv::Rect box, Rng& rng) {
     const cv::Point c(UniformInt(rng, 0, box.width - 1), UniformInt(rng, 0, box.height - 1));
     const int r = UniformInt(rng, 3, std::max(4, std::min(box.width, box.height) / 3));
     switch (UniformInt(rng, 0, 2)) {
-      case 0: cv::circle(roi, c, r, RandomColor(rng), -1, cv::LINE_AA); break;
+      case 0:
+        cv::circle(roi, c, r, RandomColor(rng), -1, cv::LINE_AA);
+        break;
       case 1:
         cv::rectangle(roi, cv::Rect(c.x - r, c.y - r / 2, 2 * r, r), RandomColor(rng), -1);
         break;
@@ -144,8 +144,8 @@ cv::Mat Floor(int w, int h, Rng& rng) {
   for (int i = 0; i < std::max(4, w * h / 150000); ++i) {
     const cv::Point c(UniformInt(rng, 0, w), UniformInt(rng, 0, h));
     if (UniformInt(rng, 0, 2) == 0) {
-      cv::ellipse(image, c, cv::Size(UniformInt(rng, 10, 60), UniformInt(rng, 10, 40)),
-                  Uniform(rng, 0, 180), 0, 360, base * Uniform(rng, 0.5, 0.9), -1, cv::LINE_AA);
+      cv::ellipse(image, c, cv::Size(UniformInt(rng, 10, 60), UniformInt(rng, 10, 40)), Uniform(rng, 0, 180), 0, 360,
+                  base * Uniform(rng, 0.5, 0.9), -1, cv::LINE_AA);
     } else {
       const cv::RotatedRect paper(c, cv::Size2f(UniformInt(rng, 40, 70), UniformInt(rng, 55, 90)),
                                   static_cast<float>(Uniform(rng, 0, 180)));
@@ -168,9 +168,9 @@ cv::Mat Wood(int w, int h, Rng& rng) {
     for (int x = 0; x < w; ++x) {
       const double v = std::sin((y + 40.0 * grain.at<float>(y, x)) * rings * 2.0 * CV_PI);
       const double f = 0.8 + 0.2 * v;
-      image.at<cv::Vec3b>(y, x) = cv::Vec3b(cv::saturate_cast<uchar>(base[0] * f),
-                                            cv::saturate_cast<uchar>(base[1] * f),
-                                            cv::saturate_cast<uchar>(base[2] * f));
+      image.at<cv::Vec3b>(y, x) =
+          cv::Vec3b(cv::saturate_cast<uchar>(base[0] * f), cv::saturate_cast<uchar>(base[1] * f),
+                    cv::saturate_cast<uchar>(base[2] * f));
     }
   // Things lying on the desk: papers, books, a keyboard-like grid, cups.
   for (int i = 0; i < std::max(3, w * h / 40000); ++i) {
@@ -183,7 +183,9 @@ cv::Mat Wood(int w, int h, Rng& rng) {
           cv::line(image, {r.x + 5, yy}, {r.x + r.width - UniformInt(rng, 5, 25), yy}, cv::Scalar(60, 60, 60), 1);
         break;
       }
-      case 1: Poster(image, r, rng); break;
+      case 1:
+        Poster(image, r, rng);
+        break;
       case 2: {
         cv::rectangle(image, r, cv::Scalar(40, 40, 40), -1);
         for (int yy = r.y + 3; yy < r.y + r.height - 6; yy += 9)
@@ -222,10 +224,18 @@ cv::Mat Clothes(int w, int h, Rng& rng) {
     for (int x = 0; x < w; ++x) {
       bool on = false;
       switch (pattern) {
-        case 0: on = (y / period) % 2 == 0; break;                       // stripes
-        case 1: on = ((x / period) + (y / period)) % 2 == 0; break;      // checks
-        case 2: on = (x % period < 3) || (y % period < 3); break;        // tartan lines
-        default: on = ((x + y) / period) % 3 == 0; break;                // diagonal
+        case 0:
+          on = (y / period) % 2 == 0;
+          break;  // stripes
+        case 1:
+          on = ((x / period) + (y / period)) % 2 == 0;
+          break;  // checks
+        case 2:
+          on = (x % period < 3) || (y % period < 3);
+          break;  // tartan lines
+        default:
+          on = ((x + y) / period) % 3 == 0;
+          break;  // diagonal
       }
       if (on) image.at<cv::Vec3b>(y, x) = cv::Vec3b(second[0], second[1], second[2]);
     }
@@ -257,17 +267,24 @@ cv::Mat Skin(int w, int h, Rng& rng) {
 
 cv::Mat MakeTextureImage(TextureKind kind, int width, int height, std::uint32_t seed) {
   if (width < 8 || height < 8)
-    throw InputError("texture size must be at least 8x8 texels, got " + std::to_string(width) +
-                     "x" + std::to_string(height));
+    throw InputError("texture size must be at least 8x8 texels, got " + std::to_string(width) + "x" +
+                     std::to_string(height));
   Rng rng(seed);
   switch (kind) {
-    case TextureKind::kWall: return Wall(width, height, rng);
-    case TextureKind::kFloor: return Floor(width, height, rng);
-    case TextureKind::kWood: return Wood(width, height, rng);
-    case TextureKind::kCarton: return Carton(width, height, rng);
-    case TextureKind::kClothes: return Clothes(width, height, rng);
-    case TextureKind::kDenim: return Denim(width, height, rng);
-    case TextureKind::kSkin: return Skin(width, height, rng);
+    case TextureKind::kWall:
+      return Wall(width, height, rng);
+    case TextureKind::kFloor:
+      return Floor(width, height, rng);
+    case TextureKind::kWood:
+      return Wood(width, height, rng);
+    case TextureKind::kCarton:
+      return Carton(width, height, rng);
+    case TextureKind::kClothes:
+      return Clothes(width, height, rng);
+    case TextureKind::kDenim:
+      return Denim(width, height, rng);
+    case TextureKind::kSkin:
+      return Skin(width, height, rng);
   }
   return Wall(width, height, rng);
 }
@@ -279,8 +296,7 @@ std::shared_ptr<const Texture> MakeTexture(const cv::Mat& image, double texel_si
   auto texture = std::make_shared<Texture>();
   texture->texel_size_m = texel_size_m;
   texture->levels.push_back(image.clone());
-  while (texture->levels.back().cols >= 16 && texture->levels.back().rows >= 16 &&
-         texture->levels.size() < 8) {
+  while (texture->levels.back().cols >= 16 && texture->levels.back().rows >= 16 && texture->levels.size() < 8) {
     cv::Mat down;
     cv::pyrDown(texture->levels.back(), down);
     texture->levels.push_back(down);

@@ -236,8 +236,8 @@ RenderResult Renderer::Shade(const std::vector<TexturedQuad>& quads, const Raste
       const Eigen::Vector3d& n = normals[static_cast<size_t>(qi)];
       const float rx = ray[x][0], ry = ray[x][1];
       const float r2 = rx * rx + ry * ry + 1.0f;
-      const float cosine = std::max(0.05f, std::abs(float(n.x()) * rx + float(n.y()) * ry + float(n.z())) /
-                                               std::sqrt(r2));
+      const float cosine =
+          std::max(0.05f, std::abs(float(n.x()) * rx + float(n.y()) * ry + float(n.z())) / std::sqrt(r2));
       const float footprint2 = z * z * r2 * inv_footprint2[static_cast<size_t>(qi)] / cosine;
       const int max_level = static_cast<int>(tex.levels.size()) - 1;
       int level = 0;

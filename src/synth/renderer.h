@@ -43,14 +43,14 @@ class Renderer {
   // false when it is empty.
   bool ScreenBox(const std::vector<Eigen::Vector3d>& polygon, cv::Rect* box) const;
   // Draws one quad into the buffers where it is nearer; `normal` gets its camera-frame normal.
-  void RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pose& camera_from_world,
-                     RasterBuffers* buffers, Eigen::Vector3d* normal) const;
+  void RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pose& camera_from_world, RasterBuffers* buffers,
+                     Eigen::Vector3d* normal) const;
   // The colour (mip-mapped, bilinear), depth and object id of every pixel the buffers cover.
   RenderResult Shade(const std::vector<TexturedQuad>& quads, const RasterBuffers& buffers,
                      const std::vector<Eigen::Vector3d>& normals) const;
 
   Camera camera_;
-  cv::Mat rays_;  // CV_32FC2: normalised (x/z, y/z) of each pixel's ray
+  cv::Mat rays_;                                          // CV_32FC2: normalised (x/z, y/z) of each pixel's ray
   double x_min_ = 0, x_max_ = 0, y_min_ = 0, y_max_ = 0;  // ray bounds, with margin
 };
 

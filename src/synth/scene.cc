@@ -26,12 +26,10 @@ float LambertShade(const Eigen::Vector3d& normal) {
 
 namespace {
 
-int Texels(double metres, double texel) {
-  return std::clamp(static_cast<int>(std::lround(metres / texel)), 8, 4096);
-}
+int Texels(double metres, double texel) { return std::clamp(static_cast<int>(std::lround(metres / texel)), 8, 4096); }
 
-TexturedQuad Face(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
-                  TextureKind kind, double texel, std::uint32_t seed, int object_id) {
+TexturedQuad Face(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v, TextureKind kind,
+                  double texel, std::uint32_t seed, int object_id) {
   TexturedQuad quad;
   quad.origin = origin;
   quad.edge_u = u;
@@ -47,20 +45,19 @@ TexturedQuad Face(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const
 
 }  // namespace
 
-void AddBox(const Eigen::Vector3d& mn, const Eigen::Vector3d& mx, const Pose& world_from_box,
-            TextureKind kind, double texel, std::uint32_t seed, int object_id,
-            std::vector<TexturedQuad>* quads) {
+void AddBox(const Eigen::Vector3d& mn, const Eigen::Vector3d& mx, const Pose& world_from_box, TextureKind kind,
+            double texel, std::uint32_t seed, int object_id, std::vector<TexturedQuad>* quads) {
   const Eigen::Vector3d d = mx - mn;
   const Eigen::Vector3d ex(d.x(), 0, 0), ey(0, d.y(), 0), ez(0, 0, d.z());
   // Texture rows run downwards (v along -z) on vertical faces so prints stand upright.
   const Eigen::Vector3d top(0, 0, d.z());
   const TexturedQuad faces[6] = {
-      Face(mn + top, ex, -ez, kind, texel, seed * 7 + 1, object_id),                 // front (y min)
-      Face(mn + ey + ex + top, -ex, -ez, kind, texel, seed * 7 + 2, object_id),      // back (y max)
-      Face(mn + ey + top, -ey, -ez, kind, texel, seed * 7 + 3, object_id),           // left (x min)
-      Face(mn + ex + top, ey, -ez, kind, texel, seed * 7 + 4, object_id),            // right (x max)
-      Face(mn + top, ex, ey, kind, texel, seed * 7 + 5, object_id),                  // top
-      Face(mn, ex, ey, kind, texel, seed * 7 + 6, object_id),                        // bottom
+      Face(mn + top, ex, -ez, kind, texel, seed * 7 + 1, object_id),             // front (y min)
+      Face(mn + ey + ex + top, -ex, -ez, kind, texel, seed * 7 + 2, object_id),  // back (y max)
+      Face(mn + ey + top, -ey, -ez, kind, texel, seed * 7 + 3, object_id),       // left (x min)
+      Face(mn + ex + top, ey, -ez, kind, texel, seed * 7 + 4, object_id),        // right (x max)
+      Face(mn + top, ex, ey, kind, texel, seed * 7 + 5, object_id),              // top
+      Face(mn, ex, ey, kind, texel, seed * 7 + 6, object_id),                    // bottom
   };
   for (const TexturedQuad& f : faces) {
     TexturedQuad w = TransformQuad(world_from_box, f);
@@ -73,8 +70,8 @@ void RoomOptions::Check() const {
   RequireOption(width_m > 2.0, "room", "width_m", "> 2", width_m);
   RequireOption(depth_m > 3.0, "room", "depth_m", "> 3", depth_m);
   RequireOption(height_m > 2.0, "room", "height_m", "> 2", height_m);
-  RequireOption(texel_size_m >= 0.001 && texel_size_m <= 0.05,
-                "room", "texel_size_m", "in [0.001, 0.05]", texel_size_m);
+  RequireOption(texel_size_m >= 0.001 && texel_size_m <= 0.05, "room", "texel_size_m", "in [0.001, 0.05]",
+                texel_size_m);
   RequireOption(furniture >= 0, "room", "furniture", ">= 0", furniture);
 }
 
@@ -84,10 +81,10 @@ std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed
   const double x0 = -o.width_m / 2, x1 = o.width_m / 2, y0 = -1.5, y1 = y0 + o.depth_m, h = o.height_m;
   const double t = o.texel_size_m;
   // Shell: walls seen from inside, texture rows downwards.
-  quads.push_back(Face({x0, y1, h}, {o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 11, 0));  // front
-  quads.push_back(Face({x1, y0, h}, {-o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 12, 0)); // back
-  quads.push_back(Face({x0, y0, h}, {0, o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 13, 0));  // left
-  quads.push_back(Face({x1, y1, h}, {0, -o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 14, 0)); // right
+  quads.push_back(Face({x0, y1, h}, {o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 11, 0));   // front
+  quads.push_back(Face({x1, y0, h}, {-o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 12, 0));  // back
+  quads.push_back(Face({x0, y0, h}, {0, o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 13, 0));   // left
+  quads.push_back(Face({x1, y1, h}, {0, -o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 14, 0));  // right
   quads.push_back(Face({x0, y0, 0}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, TextureKind::kFloor, t, seed + 15, 0));
   quads.push_back(Face({x0, y0, h}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, TextureKind::kWall, 2 * t, seed + 16, 0));
 
@@ -103,23 +100,26 @@ std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed
   };
   desk(-2.6, -1.0, 3.2, 4.0, seed + 100);
   desk(0.9, 2.5, 3.6, 4.4, seed + 200);
-  AddBox({x0, 0.2, 0}, {x0 + 0.45, 1.4, 1.25}, identity, TextureKind::kWood, t, seed + 300, 0, &quads);   // cabinet
-  AddBox({-1.0, y1 - 0.35, 1.3}, {1.2, y1 - 0.02, 1.34}, identity, TextureKind::kWood, t, seed + 310, 0, &quads);  // shelf
+  AddBox({x0, 0.2, 0}, {x0 + 0.45, 1.4, 1.25}, identity, TextureKind::kWood, t, seed + 300, 0, &quads);  // cabinet
+  AddBox({-1.0, y1 - 0.35, 1.3}, {1.2, y1 - 0.02, 1.34}, identity, TextureKind::kWood, t, seed + 310, 0,
+         &quads);                                                                                               // shelf
   AddBox({x1 - 0.5, 0.0, 0}, {x1 - 0.02, 1.0, 0.9}, identity, TextureKind::kCarton, t, seed + 320, 0, &quads);  // crate
 
   std::mt19937 rng(seed + 400);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   // Spots for extra boxes: on desks, on the shelf, on the floor along the walls.
-  struct Spot { double xa, xb, ya, yb, z; };
-  const Spot spots[] = {{-2.5, -1.3, 3.3, 3.8, 0.76}, {1.0, 2.2, 3.7, 4.2, 0.76},
+  struct Spot {
+    double xa, xb, ya, yb, z;
+  };
+  const Spot spots[] = {{-2.5, -1.3, 3.3, 3.8, 0.76},           {1.0, 2.2, 3.7, 4.2, 0.76},
                         {-0.9, 1.0, y1 - 0.33, y1 - 0.1, 1.34}, {x0 + 0.1, x0 + 1.2, 4.3, y1 - 0.4, 0.0},
-                        {x1 - 1.2, x1 - 0.2, 1.2, 3.0, 0.0}, {x0 + 0.6, x0 + 1.4, -0.5, 1.2, 0.0}};
+                        {x1 - 1.2, x1 - 0.2, 1.2, 3.0, 0.0},    {x0 + 0.6, x0 + 1.4, -0.5, 1.2, 0.0}};
   for (int i = 0; i < o.furniture; ++i) {
     const Spot& s = spots[i % 6];
     const double sx = uni(0.12, 0.45), sy = uni(0.12, 0.4), sz = uni(0.08, s.z > 0 ? 0.35 : 0.6);
     const double cx = uni(s.xa, std::max(s.xa + 0.01, s.xb - sx)), cy = uni(s.ya, std::max(s.ya + 0.01, s.yb - sy));
-    const Pose world_from_box = Pose(Eigen::Translation3d(cx, cy, s.z) *
-                                      Eigen::AngleAxisd(uni(-0.5, 0.5), Eigen::Vector3d::UnitZ()));
+    const Pose world_from_box =
+        Pose(Eigen::Translation3d(cx, cy, s.z) * Eigen::AngleAxisd(uni(-0.5, 0.5), Eigen::Vector3d::UnitZ()));
     AddBox({0, 0, 0}, {sx, sy, sz}, world_from_box, TextureKind::kCarton, fine,
            seed + 500 + static_cast<std::uint32_t>(i) * 13, 0, &quads);
   }

@@ -18,7 +18,7 @@ namespace dynvo {
 // A parallelogram origin + a*edge_u + b*edge_v, (a, b) in [0, 1]^2, carrying a texture:
 // texel (a * width, b * height) of the texture's level 0.
 struct TexturedQuad {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // metres
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   // metres
   Eigen::Vector3d edge_u = Eigen::Vector3d::UnitX();  // metres, texture columns run along it
   Eigen::Vector3d edge_v = Eigen::Vector3d::UnitY();  // metres, texture rows run along it
   std::shared_ptr<const Texture> texture;             // required for rendering
@@ -37,16 +37,15 @@ float LambertShade(const Eigen::Vector3d& normal);
 // Appends the six faces of an axis-aligned box [min, max] (in the frame of `world_from_box`)
 // with one texture per face generated from `kind` and `seed`; texel_size_m sets texture
 // resolution. Faces get Lambert shading and `object_id`.
-void AddBox(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const Pose& world_from_box,
-            TextureKind kind, double texel_size_m, std::uint32_t seed, int object_id,
-            std::vector<TexturedQuad>* quads);
+void AddBox(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const Pose& world_from_box, TextureKind kind,
+            double texel_size_m, std::uint32_t seed, int object_id, std::vector<TexturedQuad>* quads);
 
 struct RoomOptions {
-  double width_m = 6.4;        // metres along x, centred on x = 0
-  double depth_m = 7.0;        // metres along y, from y = -1.5
-  double height_m = 2.8;       // metres along z, floor at z = 0
-  double texel_size_m = 0.005; // metres per texel of walls and floor
-  int furniture = 10;          // number of extra boxes on floor and desks (0 or more)
+  double width_m = 6.4;         // metres along x, centred on x = 0
+  double depth_m = 7.0;         // metres along y, from y = -1.5
+  double height_m = 2.8;        // metres along z, floor at z = 0
+  double texel_size_m = 0.005;  // metres per texel of walls and floor
+  int furniture = 10;           // number of extra boxes on floor and desks (0 or more)
 
   // Throws InputError naming the key ("room.width_m must be > 2, got 1").
   void Check() const;

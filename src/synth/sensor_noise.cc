@@ -32,8 +32,8 @@ void SensorNoiseOptions::Check() const {
   RequireNonNegative(depth_edge_jump, "depth_edge_jump");
   RequireProbability(depth_edge_hole_prob, "depth_edge_hole_prob");
   RequireProbability(depth_dropout_prob, "depth_dropout_prob");
-  RequireOption(depth_factor > 0 && depth_factor * depth_max_m <= 65535,
-                "noise", "depth_factor", "> 0 with depth_factor * depth_max_m <= 65535", depth_factor);
+  RequireOption(depth_factor > 0 && depth_factor * depth_max_m <= 65535, "noise", "depth_factor",
+                "> 0 with depth_factor * depth_max_m <= 65535", depth_factor);
 }
 
 void ApplyRgbNoise(const SensorNoiseOptions& o, std::uint32_t seed, cv::Mat* bgr) {
@@ -63,7 +63,8 @@ cv::Mat MakeSensorDepth(const SensorNoiseOptions& o, std::uint32_t seed, const c
   const float disparity = static_cast<float>(o.depth_disparity_per_m);
   const float factor = static_cast<float>(o.depth_factor);
   const float base = static_cast<float>(o.depth_noise_base_m), quadratic = static_cast<float>(o.depth_noise_quadratic);
-  const float edge_prob = static_cast<float>(o.depth_edge_hole_prob), drop_prob = static_cast<float>(o.depth_dropout_prob);
+  const float edge_prob = static_cast<float>(o.depth_edge_hole_prob),
+              drop_prob = static_cast<float>(o.depth_dropout_prob);
   for (int y = 0; y < h; ++y) {
     const float* d = depth_m.ptr<float>(y);
     const float* g = gauss.ptr<float>(y);

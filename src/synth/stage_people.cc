@@ -39,12 +39,16 @@ StagePerson Across(const StageGeometry& g, double depth, double direction, doubl
 std::vector<StagePerson> OldPresets(Scenario scenario, const StageGeometry& g) {
   const double d = g.distance_m, v = g.speed_mps;
   switch (scenario) {
-    case Scenario::kWalkingAcross: return {Across(g, d, 1.0, v, 0)};
-    case Scenario::kTwoCrossing: return {Across(g, d, 1.0, v, 0), Across(g, d + 1.2, -1.0, 1.15 * v, 1)};
+    case Scenario::kWalkingAcross:
+      return {Across(g, d, 1.0, v, 0)};
+    case Scenario::kTwoCrossing:
+      return {Across(g, d, 1.0, v, 0), Across(g, d + 1.2, -1.0, 1.15 * v, 1)};
     case Scenario::kWalkingToward:
       return {Walker({{0.15, d + 2.5}, {0.1, std::max(0.6, d - 1.2)}}, false, v, 0, 0)};
-    case Scenario::kSittingSway: return {Seated({0.3, d}, StageMotion::kSit, 0, 0)};
-    default: return {};
+    case Scenario::kSittingSway:
+      return {Seated({0.3, d}, StageMotion::kSit, 0, 0)};
+    default:
+      return {};
   }
 }
 
@@ -78,7 +82,10 @@ void AlongRoute(const StagePerson& p, double walked, Eigen::Vector2d* at, Eigen:
 double RiseAt(double seconds, double cycle) {
   double u = std::fmod(seconds, cycle) / cycle;
   if (u < 0) u += 1;
-  auto smooth = [](double x) { x = std::clamp(x, 0.0, 1.0); return x * x * (3 - 2 * x); };
+  auto smooth = [](double x) {
+    x = std::clamp(x, 0.0, 1.0);
+    return x * x * (3 - 2 * x);
+  };
   if (u < 0.40) return 0;
   if (u < 0.55) return smooth((u - 0.40) / 0.15);
   if (u < 0.80) return 1;
@@ -104,18 +111,24 @@ std::vector<StagePerson> PlanStagePeople(Scenario scenario, const StageGeometry&
     case Scenario::kTumAway:
       return {Walker({at(0.05, -1.0), at(0.1, 1.2)}, false, 0.6 * g.speed_mps, 0, 0)};
     case Scenario::kTumSitting:
-      return {Seated(at(-0.45, -0.2), StageMotion::kSit, 0.0, 0), Seated(at(0.5, 0.3), StageMotion::kSitAndStand, 1.7, 1)};
-    default: return OldPresets(scenario, g);
+      return {Seated(at(-0.45, -0.2), StageMotion::kSit, 0.0, 0),
+              Seated(at(0.5, 0.3), StageMotion::kSitAndStand, 1.7, 1)};
+    default:
+      return OldPresets(scenario, g);
   }
 }
 
 CoverageRange DeclaredCoverage(Scenario scenario) {
   switch (scenario) {
-    case Scenario::kTumWalking: return {0.10, 0.40};
+    case Scenario::kTumWalking:
+      return {0.10, 0.40};
     case Scenario::kTumToward:
-    case Scenario::kTumAway: return {0.03, 0.30};
-    case Scenario::kTumSitting: return {0.05, 0.30};
-    default: return {};
+    case Scenario::kTumAway:
+      return {0.03, 0.30};
+    case Scenario::kTumSitting:
+      return {0.05, 0.30};
+    default:
+      return {};
   }
 }
 
@@ -154,8 +167,8 @@ std::vector<TexturedQuad> PersonQuadsAt(const StagePerson& person, const Articul
 }  // namespace
 
 std::vector<TexturedQuad> StagePeopleQuadsAt(const std::vector<StagePerson>& people,
-                                             const std::vector<ArticulatedCutout>& dolls,
-                                             const Pose& world_from_stage, double seconds) {
+                                             const std::vector<ArticulatedCutout>& dolls, const Pose& world_from_stage,
+                                             double seconds) {
   std::vector<TexturedQuad> quads;
   for (size_t i = 0; i < people.size(); ++i) {
     const ArticulatedCutout& doll = dolls.at(static_cast<size_t>(people[i].doll) % dolls.size());

@@ -16,9 +16,9 @@
 namespace dynvo {
 
 enum class StageMotion {
-  kWalk,          // along the route at speed_mps
-  kSit,           // seated, moving head and forearms a little
-  kSitAndStand,   // seated, standing up and sitting down again every cycle_s
+  kWalk,         // along the route at speed_mps
+  kSit,          // seated, moving head and forearms a little
+  kSitAndStand,  // seated, standing up and sitting down again every cycle_s
 };
 
 struct StagePerson {
@@ -27,9 +27,9 @@ struct StagePerson {
   double speed_mps = 0;                // metres per second along the route
   double start_walked_m = 0;           // metres already walked at time 0
   StageMotion motion = StageMotion::kWalk;
-  double cycle_s = 8.0;                // seconds per stand-up cycle (kSitAndStand)
-  double phase_rad = 0;                // shifts the small motions of seated people
-  int doll = 0;                        // index into the dolls
+  double cycle_s = 8.0;  // seconds per stand-up cycle (kSitAndStand)
+  double phase_rad = 0;  // shifts the small motions of seated people
+  int doll = 0;          // index into the dolls
 };
 
 struct StageGeometry {
@@ -64,8 +64,8 @@ StagePlacement PlaceStagePerson(const StagePerson& person, double seconds);
 
 // The quads of every person in the world at `seconds`; person i has object id i + 1.
 std::vector<TexturedQuad> StagePeopleQuadsAt(const std::vector<StagePerson>& people,
-                                             const std::vector<ArticulatedCutout>& dolls,
-                                             const Pose& world_from_stage, double seconds);
+                                             const std::vector<ArticulatedCutout>& dolls, const Pose& world_from_stage,
+                                             double seconds);
 
 // Metres per second of the person's fastest body point at `seconds` (over the preceding
 // 1/30 s). A person is labelled moving above kMovingSpeedMps.

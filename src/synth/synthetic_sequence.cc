@@ -32,10 +32,9 @@ void SyntheticSequenceOptions::Check() const {
   camera.Check("synth.camera");
   if (camera.HasDistortion())
     throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");
-  if (camera.width < 16 || camera.height < 16)
-    throw InputError("synth.camera: width and height must be >= 16");
-  RequireOption(motion_blur_samples >= 3 && motion_blur_samples % 2 == 1,
-                "synth", "motion_blur_samples", "odd and >= 3", motion_blur_samples);
+  if (camera.width < 16 || camera.height < 16) throw InputError("synth.camera: width and height must be >= 16");
+  RequireOption(motion_blur_samples >= 3 && motion_blur_samples % 2 == 1, "synth", "motion_blur_samples",
+                "odd and >= 3", motion_blur_samples);
   RequireOption(exposure_s > 0 && exposure_s < 1.0 / fps, "synth", "exposure_s", "in (0, 1/fps)", exposure_s);
   RequireOption(start_stamp >= 0 && start_stamp < 1e10, "synth", "start_stamp", "in [0, 1e10)", start_stamp);
   room.Check();
@@ -71,9 +70,7 @@ SyntheticWorld::SyntheticWorld(const SyntheticSequenceOptions& options)
   }
 }
 
-Pose SyntheticWorld::WorldFromCamera(double seconds) const {
-  return CameraPathPose(options_.camera_path, seconds);
-}
+Pose SyntheticWorld::WorldFromCamera(double seconds) const { return CameraPathPose(options_.camera_path, seconds); }
 
 std::vector<TexturedQuad> SyntheticWorld::QuadsAt(double seconds) const {
   std::vector<TexturedQuad> quads = static_quads_;
@@ -145,9 +142,8 @@ Trajectory SyntheticWorld::Groundtruth() const {
 
 SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder) {
   const SyntheticWorld world(options);
-  TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) +
-                               ", camera path " + CameraPathPresetName(options.camera_path) +
-                               ", seed " + std::to_string(options.seed));
+  TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) + ", camera path " +
+                               CameraPathPresetName(options.camera_path) + ", seed " + std::to_string(options.seed));
   SyntheticSequenceSummary summary;
   double ratio_sum = 0;
   PeopleLabels labels("dynvo-synth");

@@ -27,21 +27,21 @@ namespace dynvo {
 Camera TumIntrinsics(const std::string& name, const std::string& key);
 
 struct SyntheticSequenceOptions {
-  Scenario scenario = Scenario::kWalkingAcross;            // moving objects
-  CameraPathPreset camera_path = CameraPathPreset::kXyz;   // camera motion
-  int frames = 300;                 // RGB-D frames to generate
-  double fps = 30.0;                // frames per second, in (0, 60]
-  Camera camera;                    // intrinsics, no distortion (default: TUM fr3, 640x480)
-  std::uint32_t seed = 1;           // everything random derives from it
-  bool motion_blur = false;         // average sub-frames over the exposure
-  int motion_blur_samples = 5;      // sub-frames per blurred frame (odd, >= 3)
-  double exposure_s = 0.02;         // seconds the shutter is open (motion blur)
-  bool kinect_timing = false;       // the depth image rendered at its own stamp, a few ms after
-                                    // the colour image (Kinect v1), and a slow auto-exposure drift
-                                    // of the colour image's brightness (+-10%)
+  Scenario scenario = Scenario::kWalkingAcross;           // moving objects
+  CameraPathPreset camera_path = CameraPathPreset::kXyz;  // camera motion
+  int frames = 300;                                       // RGB-D frames to generate
+  double fps = 30.0;                                      // frames per second, in (0, 60]
+  Camera camera;                                          // intrinsics, no distortion (default: TUM fr3, 640x480)
+  std::uint32_t seed = 1;                                 // everything random derives from it
+  bool motion_blur = false;                               // average sub-frames over the exposure
+  int motion_blur_samples = 5;                            // sub-frames per blurred frame (odd, >= 3)
+  double exposure_s = 0.02;                               // seconds the shutter is open (motion blur)
+  bool kinect_timing = false;                             // the depth image rendered at its own stamp, a few ms after
+                               // the colour image (Kinect v1), and a slow auto-exposure drift
+                               // of the colour image's brightness (+-10%)
   double start_stamp = 1700000000.0;  // seconds, stamp of the first frame
-  RoomOptions room;                 // the static scene
-  SensorNoiseOptions noise;         // sensor effects
+  RoomOptions room;                   // the static scene
+  SensorNoiseOptions noise;           // sensor effects
 
   SyntheticSequenceOptions();
   // Throws InputError naming the key ("synth.frames must be >= 1, got 0").
@@ -87,8 +87,8 @@ class SyntheticWorld {
  private:
   SyntheticSequenceOptions options_;
   std::vector<TexturedQuad> static_quads_;
-  std::vector<MovingPerson> people_;               // box people (older scenarios)
-  std::vector<StagePerson> stage_people_;          // articulated photo people (TUM scenarios)
+  std::vector<MovingPerson> people_;       // box people (older scenarios)
+  std::vector<StagePerson> stage_people_;  // articulated photo people (TUM scenarios)
   std::vector<ArticulatedCutout> dolls_;
   Renderer renderer_;
   std::vector<double> rgb_stamps_, depth_stamps_;
@@ -102,7 +102,6 @@ struct SyntheticSequenceSummary {
 
 // Renders every frame and writes the TUM layout (with masks/, people.txt, stats.csv and
 // camera.json) into a folder prepared by PrepareOutputFolder.
-SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options,
-                                                const std::string& folder);
+SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder);
 
 }  // namespace dynvo

@@ -21,8 +21,7 @@ void WriteText(const std::string& path, const std::string& text) {
   if (!out) throw InputError(path + ": cannot write file");
 }
 
-std::string ListText(const std::string& title, const std::string& comment,
-                     const std::vector<std::string>& lines) {
+std::string ListText(const std::string& title, const std::string& comment, const std::vector<std::string>& lines) {
   std::string text = "# " + title + "\n# " + comment + "\n# timestamp filename\n";
   for (const std::string& line : lines) text += line + "\n";
   return text;
@@ -91,9 +90,8 @@ void TumWriter::Finish(const Trajectory& groundtruth, const Camera& camera, doub
   if (!mask_lines_.empty())
     WriteText(folder_ + "/masks.txt",
               ListText("dynamic masks (255 = pixel of a moving object), one per color image", comment_, mask_lines_));
-  WriteText(folder_ + "/groundtruth.txt",
-            "# ground truth trajectory\n# " + comment_ + "\n# timestamp tx ty tz qx qy qz qw\n" +
-                FormatTrajectory(groundtruth));
+  WriteText(folder_ + "/groundtruth.txt", "# ground truth trajectory\n# " + comment_ +
+                                              "\n# timestamp tx ty tz qx qy qz qw\n" + FormatTrajectory(groundtruth));
   WriteCameraFile(folder_ + "/camera.json", camera, depth_factor);
 }
 

@@ -35,8 +35,7 @@ class TumWriter {
 
   // Writes rgb/<stamp>.png (CV_8UC3 BGR), depth/<depth_stamp>.png (CV_16U) and, when
   // `mask` is not empty, masks/<stamp>.png (CV_8U, 255 = moving object).
-  void AddFrame(double rgb_stamp, const cv::Mat& bgr, double depth_stamp, const cv::Mat& depth16,
-                const cv::Mat& mask);
+  void AddFrame(double rgb_stamp, const cv::Mat& bgr, double depth_stamp, const cv::Mat& depth16, const cv::Mat& mask);
 
   // Writes rgb.txt, depth.txt, masks.txt (when masks were given), groundtruth.txt and
   // camera.json.

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -71,14 +71,12 @@ void CoherentMotionOptions::Check() const {
 
 std::vector<uint8_t> FlagCoherentMotion(const std::vector<Eigen::Vector2d>& pixels,
                                         const std::vector<Eigen::Vector2d>& residuals,
-                                        const std::vector<double>& depths,
-                                        const CoherentMotionOptions& options) {
+                                        const std::vector<double>& depths, const CoherentMotionOptions& options) {
   options.Check();
   const size_t n = pixels.size();
   if (residuals.size() != n || depths.size() != n)
-    throw InputError("FlagCoherentMotion: pixels, residuals and depths must have the same size (" +
-                     std::to_string(n) + ", " + std::to_string(residuals.size()) + ", " +
-                     std::to_string(depths.size()) + ")");
+    throw InputError("FlagCoherentMotion: pixels, residuals and depths must have the same size (" + std::to_string(n) +
+                     ", " + std::to_string(residuals.size()) + ", " + std::to_string(depths.size()) + ")");
   std::vector<uint8_t> flags(n, 0);
   // The error field has 6 unknowns: too few points to tell a part from the whole.
   if (n < static_cast<size_t>(std::max(options.min_neighbours, kMinPoints))) return flags;

@@ -40,7 +40,6 @@ void BindConfigKeys(const std::string& prefix, CoherentMotionOptions* options, C
 // when the sizes differ or the options are invalid.
 std::vector<uint8_t> FlagCoherentMotion(const std::vector<Eigen::Vector2d>& pixels,
                                         const std::vector<Eigen::Vector2d>& residuals,
-                                        const std::vector<double>& depths,
-                                        const CoherentMotionOptions& options);
+                                        const std::vector<double>& depths, const CoherentMotionOptions& options);
 
 }  // namespace dynvo

@@ -9,6 +9,7 @@
 
 #include "core/config_registry.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "features/feature_filter.h"
 #include "tracking/new_point_confirmation.h"
 #include "tracking/static_verification.h"
@@ -17,26 +18,20 @@ namespace dynvo {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double MillisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 bool HasDepth(double depth) { return depth > 0.0; }
 
 void CheckFeatures(const FrameFeatures& f) {
   const size_t n = f.size();
   if (f.pixels.size() != n || f.depths.size() != n || f.points_in_camera.size() != n)
-    throw InputError("FrameFeatures: keypoints, pixels, depths and points_in_camera must have "
-                     "the same size (" + std::to_string(n) + ", " +
-                     std::to_string(f.pixels.size()) + ", " + std::to_string(f.depths.size()) +
-                     ", " + std::to_string(f.points_in_camera.size()) + ")");
-  if (n > 0 && (f.descriptors.rows != static_cast<int>(n) || f.descriptors.cols != 32 ||
-                f.descriptors.type() != CV_8UC1))
-    throw InputError("FrameFeatures: descriptors must be " + std::to_string(n) +
-                     " x 32 CV_8UC1, got " + std::to_string(f.descriptors.rows) + " x " +
-                     std::to_string(f.descriptors.cols));
+    throw InputError(
+        "FrameFeatures: keypoints, pixels, depths and points_in_camera must have "
+        "the same size (" +
+        std::to_string(n) + ", " + std::to_string(f.pixels.size()) + ", " + std::to_string(f.depths.size()) + ", " +
+        std::to_string(f.points_in_camera.size()) + ")");
+  if (n > 0 &&
+      (f.descriptors.rows != static_cast<int>(n) || f.descriptors.cols != 32 || f.descriptors.type() != CV_8UC1))
+    throw InputError("FrameFeatures: descriptors must be " + std::to_string(n) + " x 32 CV_8UC1, got " +
+                     std::to_string(f.descriptors.rows) + " x " + std::to_string(f.descriptors.cols));
 }
 
 }  // namespace
@@ -51,17 +46,15 @@ void TrackerOptions::Check() const {
   RequireOption(min_matches >= 4, "tracking", "min_matches", ">= 4", min_matches);
   RequireOption(wide_search_factor >= 1.0, "tracking", "wide_search_factor", ">= 1", wide_search_factor);
   RequireOption(max_new_points >= 0, "tracking", "max_new_points", ">= 0", max_new_points);
-  RequireOption(max_ba_depth_rotation_deg_s >= 0.0,
-                "tracking", "max_ba_depth_rotation_deg_s", ">= 0", max_ba_depth_rotation_deg_s);
+  RequireOption(max_ba_depth_rotation_deg_s >= 0.0, "tracking", "max_ba_depth_rotation_deg_s", ">= 0",
+                max_ba_depth_rotation_deg_s);
   RequireOption(readmit_masked_px >= 0.0, "tracking", "readmit_masked_px", ">= 0", readmit_masked_px);
   RequireOption(readmit_rms_factor > 0.0, "tracking", "readmit_rms_factor", "> 0", readmit_rms_factor);
   RequireOption(rematch_radius_px >= 0.0, "tracking", "rematch_radius_px", ">= 0", rematch_radius_px);
-  RequireOption(new_point_confirmations >= 0,
-                "tracking", "new_point_confirmations", ">= 0", new_point_confirmations);
-  RequireOption(new_point_max_shift_m >= 0.0,
-                "tracking", "new_point_max_shift_m", ">= 0", new_point_max_shift_m);
-  RequireOption(lost_frames_before_reseed >= 1,
-                "tracking", "lost_frames_before_reseed", ">= 1", lost_frames_before_reseed);
+  RequireOption(new_point_confirmations >= 0, "tracking", "new_point_confirmations", ">= 0", new_point_confirmations);
+  RequireOption(new_point_max_shift_m >= 0.0, "tracking", "new_point_max_shift_m", ">= 0", new_point_max_shift_m);
+  RequireOption(lost_frames_before_reseed >= 1, "tracking", "lost_frames_before_reseed", ">= 1",
+                lost_frames_before_reseed);
 }
 
 FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
@@ -71,7 +64,7 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
 }
 
 TrackingResult FrameTracker::Initialise(const FrameFeatures& features, double stamp) {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   TrackingResult result;
   result.world_from_camera = motion_.Predict(stamp);
   result.state = TrackingState::kInitializing;
@@ -90,7 +83,7 @@ TrackingResult FrameTracker::Initialise(const FrameFeatures& features, double st
 
 void FrameTracker::AcceptPose(const FrameFeatures& used, double stamp, const std::vector<Match>& matches,
                               const PoseEstimate& estimate, TrackingResult& result) {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   result.state = TrackingState::kTracking;
   result.num_inliers = estimate.num_inliers;
   result.world_from_camera = estimate.camera_from_world.inverse();
@@ -108,13 +101,12 @@ void FrameTracker::AcceptPose(const FrameFeatures& used, double stamp, const std
                      keyframe_camera_from_world, estimate.camera_from_world);
   result.map_ms = MillisecondsSince(start);
   if (decision.insert)
-    result.world_from_camera =
-        InsertKeyframe(used, stamp, matches, estimate.inliers, result.world_from_camera, result);
+    result.world_from_camera = InsertKeyframe(used, stamp, matches, estimate.inliers, result.world_from_camera, result);
 }
 
 void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, const Pose& predicted_world_from_camera,
                                  const std::string& failure, TrackingResult& result) {
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   result.world_from_camera = predicted_world_from_camera;
   result.state = TrackingState::kLost;
   result.note = failure;
@@ -130,8 +122,7 @@ void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, co
   result.map_ms = MillisecondsSince(start);
 }
 
-TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
-                                   const FrameFeatures* masked) {
+TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
@@ -141,19 +132,15 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
   const Pose predicted_world_from_camera = motion_.Predict(stamp);
   std::vector<Match> matches;
   std::string failure;
-  PoseEstimate estimate =
-      EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
+  PoseEstimate estimate = EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
   // The frame's features plus the masked ones verified static, when any are.
   FrameFeatures joined;
-  const bool readmitted = estimate.ok && masked != nullptr && masked->size() > 0 &&
-                          options_.readmit_masked_px > 0.0 &&
+  const bool readmitted = estimate.ok && masked != nullptr && masked->size() > 0 && options_.readmit_masked_px > 0.0 &&
                           ReadmitStaticFeatures(features, *masked, joined, matches, estimate, result);
   const FrameFeatures& used = readmitted ? joined : features;
-  if (estimate.ok && options_.new_point_confirmations > 0)
-    ConfirmNewMapPoints(used, matches, estimate, result);
+  if (estimate.ok && options_.new_point_confirmations > 0) ConfirmNewMapPoints(used, matches, estimate, result);
   moving_features_.assign(used.size(), 0);
-  if (estimate.ok && options_.coherent_motion.enabled)
-    RejectCoherentMotion(used, matches, estimate, result);
+  if (estimate.ok && options_.coherent_motion.enabled) RejectCoherentMotion(used, matches, estimate, result);
   if (estimate.ok)
     AcceptPose(used, stamp, matches, estimate, result);
   else
@@ -164,25 +151,24 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp,
   return result;
 }
 
-PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
-                                             const Pose& predicted_camera_from_world,
+PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features, const Pose& predicted_camera_from_world,
                                              std::vector<Match>& matches, std::string& failure,
                                              TrackingResult& result) {
   // Matching against the map around the prediction.
-  Clock::time_point start = Clock::now();
+  SteadyClock::time_point start = SteadyClock::now();
   const double wide_radius = options_.matching.search_radius_px * options_.wide_search_factor;
   CollectVisiblePoints(predicted_camera_from_world, -wide_radius);
   matches.clear();
   if (features.size() > 0 && !visible_ids_.empty())
-    matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
-                                predicted_camera_from_world, options_.matching, &visible_angles_);
+    matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_, predicted_camera_from_world,
+                                options_.matching, &visible_angles_);
   result.match_ms = MillisecondsSince(start);
 
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
 
   // Pose: refine the prediction; when that fails, EPnP + RANSAC on a wider search.
-  start = Clock::now();
+  start = SteadyClock::now();
   PoseEstimate estimate;
   failure.clear();
   if (static_cast<int>(matches.size()) >= options_.min_matches) {
@@ -194,8 +180,8 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
     }
     if (!estimate.ok) failure = "refinement from the prediction failed (" + estimate.failure + ")";
   } else {
-    failure = "only " + std::to_string(matches.size()) + " map matches (< " +
-              std::to_string(options_.min_matches) + ")";
+    failure =
+        "only " + std::to_string(matches.size()) + " map matches (< " + std::to_string(options_.min_matches) + ")";
   }
   result.pose_ms = MillisecondsSince(start);
   RematchAroundEstimate(features, estimate, matches, result);
@@ -210,13 +196,13 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features,
 void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current,
                                          std::vector<Match>& current_matches, TrackingResult& result) {
   if (!current.ok || options_.rematch_radius_px <= 0.0) return;
-  Clock::time_point start = Clock::now();
+  SteadyClock::time_point start = SteadyClock::now();
   MatchOptions tight = options_.matching;
   tight.search_radius_px = options_.rematch_radius_px;
   std::vector<Match> rematched = MatchByProjection(visible_points_, visible_descriptors_, features, camera_,
                                                    current.camera_from_world, tight, &visible_angles_);
   result.match_ms += MillisecondsSince(start);
-  start = Clock::now();
+  start = SteadyClock::now();
   if (static_cast<int>(rematched.size()) >= options_.min_matches) {
     std::vector<Eigen::Vector3d> points;
     std::vector<Eigen::Vector2d> pixels;
@@ -233,13 +219,13 @@ void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEsti
 void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pose& predicted_camera_from_world,
                                         double wide_radius, std::vector<Match>& matches, PoseEstimate& estimate,
                                         std::string& failure, TrackingResult& result) {
-  Clock::time_point start = Clock::now();
+  SteadyClock::time_point start = SteadyClock::now();
   MatchOptions wide = options_.matching;
   wide.search_radius_px = wide_radius;
   matches = MatchByProjection(visible_points_, visible_descriptors_, features, camera_, predicted_camera_from_world,
                               wide, &visible_angles_);
   result.match_ms += MillisecondsSince(start);
-  start = Clock::now();
+  start = SteadyClock::now();
   if (static_cast<int>(matches.size()) >= options_.min_matches) {
     std::vector<Eigen::Vector3d> points;
     std::vector<Eigen::Vector2d> pixels;
@@ -260,22 +246,21 @@ void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pos
 }
 
 bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
-                                         FrameFeatures& joined, std::vector<Match>& matches,
-                                         PoseEstimate& estimate, TrackingResult& result) {
-  const Clock::time_point start = Clock::now();
+                                         FrameFeatures& joined, std::vector<Match>& matches, PoseEstimate& estimate,
+                                         TrackingResult& result) {
+  const SteadyClock::time_point start = SteadyClock::now();
   std::vector<uint8_t> taken(visible_points_.size(), 0);
   for (size_t i = 0; i < matches.size(); ++i)
     if (estimate.inliers[i]) taken[static_cast<size_t>(matches[i].point_index)] = 1;
   const std::vector<Match> verified = VerifyStaticFeatures(
-      visible_points_, visible_descriptors_, &visible_angles_, masked, camera_,
-      estimate.camera_from_world, options_.matching,
-      std::min(options_.readmit_masked_px, options_.readmit_rms_factor * estimate.rms_error_px),
+      visible_points_, visible_descriptors_, &visible_angles_, masked, camera_, estimate.camera_from_world,
+      options_.matching, std::min(options_.readmit_masked_px, options_.readmit_rms_factor * estimate.rms_error_px),
       taken);
   result.match_ms += MillisecondsSince(start);
   if (verified.empty()) return false;
 
   // Refine with the frame's matches (start set: the inliers so far) plus the verified ones.
-  const Clock::time_point refine_start = Clock::now();
+  const SteadyClock::time_point refine_start = SteadyClock::now();
   const size_t n = matches.size();
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
@@ -286,8 +271,7 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   }
   std::vector<uint8_t> use = estimate.inliers;
   use.resize(n + verified.size(), 1);
-  PoseEstimate joint =
-      RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
+  PoseEstimate joint = RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
   result.pose_ms += MillisecondsSince(refine_start);
   if (!joint.ok) return false;
 
@@ -313,8 +297,7 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
 }
 
 void FrameTracker::Correspondences(const FrameFeatures& features, const std::vector<Match>& matches,
-                                   std::vector<Eigen::Vector3d>& points,
-                                   std::vector<Eigen::Vector2d>& pixels) const {
+                                   std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector2d>& pixels) const {
   points.clear();
   pixels.clear();
   for (const Match& match : matches) {
@@ -323,9 +306,8 @@ void FrameTracker::Correspondences(const FrameFeatures& features, const std::vec
   }
 }
 
-void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
-                                       const std::vector<Match>& matches, PoseEstimate& estimate,
-                                       TrackingResult& result) {
+void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches,
+                                       PoseEstimate& estimate, TrackingResult& result) {
   const size_t n = matches.size();
   std::vector<uint8_t> unconfirmed(n);
   bool any = false;
@@ -334,12 +316,12 @@ void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
     any = any || (unconfirmed[i] && estimate.inliers[i]);
   }
   if (!any) return;  // most frames: nothing to check
-  const Clock::time_point start = Clock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   Correspondences(features, matches, points, pixels);
-  NewPointConfirmation checked = ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_,
-                                                  options_.pose, options_.new_point_max_shift_m);
+  NewPointConfirmation checked =
+      ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_, options_.pose, options_.new_point_max_shift_m);
   for (size_t i = 0; i < n; ++i)
     if (checked.confirmed[i]) map_.Confirm(visible_ids_[static_cast<size_t>(matches[i].point_index)]);
   result.new_points_rejected = checked.rejected;
@@ -347,10 +329,9 @@ void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features,
   result.pose_ms += MillisecondsSince(start);
 }
 
-void FrameTracker::RejectCoherentMotion(const FrameFeatures& features,
-                                        const std::vector<Match>& matches, PoseEstimate& estimate,
-                                        TrackingResult& result) {
-  const Clock::time_point start = Clock::now();
+void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches,
+                                        PoseEstimate& estimate, TrackingResult& result) {
+  const SteadyClock::time_point start = SteadyClock::now();
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   Correspondences(features, matches, points, pixels);
@@ -366,8 +347,7 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features,
     residuals.push_back(pixels[i] - camera_.Project(in_camera));
     depths.push_back(in_camera.z());
   }
-  const std::vector<uint8_t> flags =
-      FlagCoherentMotion(inlier_pixels, residuals, depths, options_.coherent_motion);
+  const std::vector<uint8_t> flags = FlagCoherentMotion(inlier_pixels, residuals, depths, options_.coherent_motion);
   std::vector<uint8_t> use = estimate.inliers;
   int flagged = 0;
   for (size_t k = 0; k < flags.size(); ++k) {
@@ -376,8 +356,7 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features,
     ++flagged;
   }
   if (flagged > 0) {
-    PoseEstimate refined =
-        RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
+    PoseEstimate refined = RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
     if (refined.ok && refined.num_inliers >= options_.min_matches) {
       // RefinePose keeps the flagged ones out (`use` is its start set).
       std::set<int64_t> moving_points;
@@ -420,8 +399,7 @@ void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double ma
     std::memcpy(visible_descriptors_.ptr<uint8_t>(static_cast<int>(i)), visible[i]->descriptor.ptr<uint8_t>(), 32);
 }
 
-bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp,
-                           const Pose& world_from_camera) {
+bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp, const Pose& world_from_camera) {
   int usable = 0;
   for (double depth : features.depths) usable += HasDepth(depth) ? 1 : 0;
   if (usable < options_.min_matches) return false;
@@ -433,9 +411,9 @@ bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp,
   keyframe.observations.reserve(static_cast<size_t>(usable));
   for (size_t i = 0; i < features.size(); ++i) {
     if (!HasDepth(features.depths[i])) continue;
-    const int64_t id = map_.AddPoint(world_from_camera * features.points_in_camera[i],
-                                     features.descriptors.row(static_cast<int>(i)), frame_index_,
-                                     features.keypoints[i].angle);
+    const int64_t id =
+        map_.AddPoint(world_from_camera * features.points_in_camera[i], features.descriptors.row(static_cast<int>(i)),
+                      frame_index_, features.keypoints[i].angle);
     keyframe.observations.push_back({id, features.pixels[i], features.depths[i]});
   }
   map_.AddKeyframe(std::move(keyframe));
@@ -444,11 +422,10 @@ bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp,
   return true;
 }
 
-Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
-                                  const std::vector<Match>& matches,
-                                  const std::vector<uint8_t>& inliers,
-                                  const Pose& world_from_camera, TrackingResult& result) {
-  Clock::time_point start = Clock::now();
+Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
+                                  const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
+                                  TrackingResult& result) {
+  SteadyClock::time_point start = SteadyClock::now();
   Keyframe keyframe;
   keyframe.frame_index = frame_index_;
   keyframe.stamp = stamp;
@@ -456,10 +433,9 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   // Unsynchronised rolling-shutter RGB-D cameras (Kinect v1: depth stamps up to ~15 ms off the
   // colour ones) misplace depth against colour by several pixels while the camera turns fast.
   // The new points still start from that depth, but BA weighs their image positions only.
-  const double rotation_deg_s =
-      motion_.AngularSpeedTo(world_from_camera, stamp) * 180.0 / 3.14159265358979323846;
-  result.keyframe_depth_in_ba = options_.max_ba_depth_rotation_deg_s <= 0.0 ||
-                                rotation_deg_s <= options_.max_ba_depth_rotation_deg_s;
+  const double rotation_deg_s = motion_.AngularSpeedTo(world_from_camera, stamp) * 180.0 / 3.14159265358979323846;
+  result.keyframe_depth_in_ba =
+      options_.max_ba_depth_rotation_deg_s <= 0.0 || rotation_deg_s <= options_.max_ba_depth_rotation_deg_s;
   const auto ba_depth = [&](double depth) { return result.keyframe_depth_in_ba ? std::max(depth, 0.0) : 0.0; };
   std::vector<uint8_t> tracked(features.size(), 0);
   for (size_t i = 0; i < matches.size(); ++i) {
@@ -467,8 +443,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
     const size_t f = static_cast<size_t>(matches[i].feature_index);
     const int64_t id = visible_ids_[static_cast<size_t>(matches[i].point_index)];
     tracked[f] = 1;
-    keyframe.observations.push_back(
-        {id, features.pixels[f], ba_depth(features.depths[f])});
+    keyframe.observations.push_back({id, features.pixels[f], ba_depth(features.depths[f])});
     map_.SetAppearance(id, features.descriptors.row(static_cast<int>(f)), features.keypoints[f].angle);
   }
   // New points from the untracked features with depth, the nearest (most accurate) first.
@@ -476,16 +451,16 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   for (size_t i = 0; i < features.size(); ++i)
     if (!tracked[i] && !moving_features_[i] && HasDepth(features.depths[i])) candidates.push_back(i);
   const size_t keep = std::min(candidates.size(), static_cast<size_t>(options_.max_new_points));
-  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
-                    candidates.end(), [&](size_t a, size_t b) {
+  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(),
+                    [&](size_t a, size_t b) {
                       return features.depths[a] < features.depths[b] ||
                              (features.depths[a] == features.depths[b] && a < b);
                     });
   candidates.resize(keep);
   for (size_t i : candidates) {
-    const int64_t id = map_.AddPoint(world_from_camera * features.points_in_camera[i],
-                                     features.descriptors.row(static_cast<int>(i)), frame_index_,
-                                     features.keypoints[i].angle);
+    const int64_t id =
+        map_.AddPoint(world_from_camera * features.points_in_camera[i], features.descriptors.row(static_cast<int>(i)),
+                      frame_index_, features.keypoints[i].angle);
     keyframe.observations.push_back({id, features.pixels[i], ba_depth(features.depths[i])});
     map_.SetUnconfirmedFrames(id, options_.new_point_confirmations);
   }
@@ -493,7 +468,7 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp,
   result.keyframe_inserted = true;
   result.map_ms += MillisecondsSince(start);
 
-  start = Clock::now();
+  start = SteadyClock::now();
   Pose refined = world_from_camera;
   if (options_.local_ba.enabled) {
     const BundleAdjustmentReport report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);

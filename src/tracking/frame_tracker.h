@@ -26,70 +26,71 @@ namespace dynvo {
 class ConfigRegistry;
 
 struct TrackerOptions {
-  MatchOptions matching;               // "tracking.matching.*"
-  PoseSolverOptions pose;              // "tracking.pose.*"
-  LocalMapOptions map;                 // "tracking.map.*"
-  KeyframeOptions keyframes;           // "tracking.keyframes.*"
-  BundleAdjustmentOptions local_ba;    // "tracking.local_ba.*"
-  int min_matches = 20;                // map matches / pose inliers needed to track; also the
-                                       // depth features needed to seed the map (>= 4)
-  double wide_search_factor = 3.0;     // search radius multiplier of the EPnP retry (>= 1)
-  int lost_frames_before_reseed = 3;   // consecutive failed frames before the map is re-seeded (>= 1)
-  int max_new_points = 500;            // new map points per keyframe, the nearest first (>= 0);
-                                       // bounds duplicates of points that failed to match
+  MatchOptions matching;                      // "tracking.matching.*"
+  PoseSolverOptions pose;                     // "tracking.pose.*"
+  LocalMapOptions map;                        // "tracking.map.*"
+  KeyframeOptions keyframes;                  // "tracking.keyframes.*"
+  BundleAdjustmentOptions local_ba;           // "tracking.local_ba.*"
+  int min_matches = 20;                       // map matches / pose inliers needed to track; also the
+                                              // depth features needed to seed the map (>= 4)
+  double wide_search_factor = 3.0;            // search radius multiplier of the EPnP retry (>= 1)
+  int lost_frames_before_reseed = 3;          // consecutive failed frames before the map is re-seeded (>= 1)
+  int max_new_points = 500;                   // new map points per keyframe, the nearest first (>= 0);
+                                              // bounds duplicates of points that failed to match
   double max_ba_depth_rotation_deg_s = 30.0;  // a keyframe taken while the camera turns faster
-                                       // keeps its depths out of local BA; its new points still
-                                       // start from depth (deg/s; 0 = never; >= 0)
-  CoherentMotionOptions coherent_motion;  // "tracking.coherent_motion.*"
-  double rematch_radius_px = 5.0;      // after the first pose estimate, match again around it
-                                       // within this radius and refine again (pixels; 0 = off,
-                                       // >= 0)
-  double readmit_masked_px = 3.0;      // masked features (see Track) matching a map point within
-                                       // this reprojection error of the pose estimated without
-                                       // them rejoin the pose and the keyframe (pixels; 0 = off:
-                                       // masked features stay out; >= 0) ...
-  double readmit_rms_factor = 2.0;     // ... and within this many times the RMS error of that
-                                       // pose's inliers (> 0)
-  int new_point_confirmations = 0;     // points a keyframe makes join the pose only after this
-                                       // many frames confirmed them (see
-                                       // tracking/new_point_confirmation.h; 0 = off: trusted at
-                                       // once; >= 0) ...
-  double new_point_max_shift_m = 0.003;  // ... a frame checks them when they move its camera
-                                       // centre by more than this from the pose of the trusted
-                                       // points (metres, >= 0)
+                                              // keeps its depths out of local BA; its new points still
+                                              // start from depth (deg/s; 0 = never; >= 0)
+  CoherentMotionOptions coherent_motion;      // "tracking.coherent_motion.*"
+  double rematch_radius_px = 5.0;             // after the first pose estimate, match again around it
+                                              // within this radius and refine again (pixels; 0 = off,
+                                              // >= 0)
+  double readmit_masked_px = 3.0;             // masked features (see Track) matching a map point within
+                                              // this reprojection error of the pose estimated without
+                                              // them rejoin the pose and the keyframe (pixels; 0 = off:
+                                              // masked features stay out; >= 0) ...
+  double readmit_rms_factor = 2.0;            // ... and within this many times the RMS error of that
+                                              // pose's inliers (> 0)
+  int new_point_confirmations = 0;            // points a keyframe makes join the pose only after this
+                                              // many frames confirmed them (see
+                                              // tracking/new_point_confirmation.h; 0 = off: trusted at
+                                              // once; >= 0) ...
+  double new_point_max_shift_m = 0.003;       // ... a frame checks them when they move its camera
+                                              // centre by more than this from the pose of the trusted
+                                              // points (metres, >= 0)
 
   // Throws InputError naming the key ("tracking.min_matches ...", "tracking.pose.min_inliers ...")
   // when this or any sub-option is out of range.
   void Check() const;
 };
 
-// The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes, .local_ba, .coherent_motion).
+// The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes,
+// .local_ba, .coherent_motion).
 void BindConfigKeys(const std::string& prefix, TrackerOptions* options, ConfigRegistry* registry);
 
 struct TrackingResult {
   Pose world_from_camera = Pose::Identity();  // always set (motion model when lost)
   TrackingState state = TrackingState::kInitializing;
-  std::string note;               // why lost / reinitialised / not initialised, "" otherwise
-  int num_matches = 0;            // map matches used for the pose
-  int num_inliers = 0;            // pose inliers among them
-  std::vector<int> readmitted;    // masked features (indices into Track's `masked`) verified
-                                  // static that are inliers of the final pose
+  std::string note;                      // why lost / reinitialised / not initialised, "" otherwise
+  int num_matches = 0;                   // map matches used for the pose
+  int num_inliers = 0;                   // pose inliers among them
+  std::vector<int> readmitted;           // masked features (indices into Track's `masked`) verified
+                                         // static that are inliers of the final pose
   std::vector<uint8_t> feature_inliers;  // 1 per feature that is an inlier of the final pose:
-                                  // Track's `features`, then the `readmitted` ones in that
-                                  // order (empty when the frame was not tracked)
-  bool used_epnp = false;         // the pose came from the EPnP + RANSAC retry
+                                         // Track's `features`, then the `readmitted` ones in that
+                                         // order (empty when the frame was not tracked)
+  bool used_epnp = false;                // the pose came from the EPnP + RANSAC retry
   bool keyframe_inserted = false;
-  int map_keyframes = 0;          // local map size after this frame
+  int map_keyframes = 0;  // local map size after this frame
   int map_points = 0;
-  int coherent_motion_rejected = 0;  // pose inliers that moved with their neighbours, left out
-                                     // of the pose and the map (coherent_motion)
-  int new_points_rejected = 0;    // matches to unconfirmed map points left out of the pose
-                                  // (new_point_confirmations)
-  bool keyframe_depth_in_ba = true;  // false: the new keyframe's depths were left out of BA
-                                     // (see max_ba_depth_rotation_deg_s)
-  double local_ba_rms_px = 0.0;   // final inlier RMS of the local BA (keyframes only)
+  int coherent_motion_rejected = 0;              // pose inliers that moved with their neighbours, left out
+                                                 // of the pose and the map (coherent_motion)
+  int new_points_rejected = 0;                   // matches to unconfirmed map points left out of the pose
+                                                 // (new_point_confirmations)
+  bool keyframe_depth_in_ba = true;              // false: the new keyframe's depths were left out of BA
+                                                 // (see max_ba_depth_rotation_deg_s)
+  double local_ba_rms_px = 0.0;                  // final inlier RMS of the local BA (keyframes only)
   double match_ms = 0, pose_ms = 0, map_ms = 0;  // per-stage wall times, ms
-  double local_ba_ms = 0;  // local BA wall time (keyframes only)
+  double local_ba_ms = 0;                        // local BA wall time (keyframes only)
 };
 
 class FrameTracker {
@@ -104,8 +105,7 @@ class FrameTracker {
   // those that match the map at the pose from `features` within that error rejoin the final
   // pose refinement and the keyframe; the others are never used. Throws InputError when the
   // feature arrays disagree in size.
-  TrackingResult Track(const FrameFeatures& features, double stamp,
-                       const FrameFeatures* masked = nullptr);
+  TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr);
 
   // The local map as of the last Track.
   const LocalMap& map() const { return map_; }
@@ -126,40 +126,36 @@ class FrameTracker {
   // rematch_radius_px of that estimate and refining, kept when it has at least as many
   // inliers. Fills `matches` (those the estimate refers to), `failure` (why, when not ok) and
   // the match/pose times of `result`.
-  PoseEstimate EstimateFramePose(const FrameFeatures& features,
-                                 const Pose& predicted_camera_from_world,
-                                 std::vector<Match>& matches, std::string& failure,
-                                 TrackingResult& result);
+  PoseEstimate EstimateFramePose(const FrameFeatures& features, const Pose& predicted_camera_from_world,
+                                 std::vector<Match>& matches, std::string& failure, TrackingResult& result);
   // The prediction may be off by more than the matcher's tolerance on fast motion, so some
   // matches are wrong and others missed: matches again within rematch_radius_px of `current`
   // and refines from it; keeps the result with more inliers (and its matches).
-  void RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current,
-                             std::vector<Match>& current_matches, TrackingResult& result);
+  void RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current, std::vector<Match>& current_matches,
+                             TrackingResult& result);
   // EPnP + RANSAC on matches within `wide_radius` of the prediction (into `matches`), into
   // `estimate` when there are enough of them; appends why it failed to `failure`.
-  void EstimateOnWideSearch(const FrameFeatures& features, const Pose& predicted_camera_from_world,
-                            double wide_radius, std::vector<Match>& matches, PoseEstimate& estimate,
-                            std::string& failure, TrackingResult& result);
+  void EstimateOnWideSearch(const FrameFeatures& features, const Pose& predicted_camera_from_world, double wide_radius,
+                            std::vector<Match>& matches, PoseEstimate& estimate, std::string& failure,
+                            TrackingResult& result);
   // Refines `estimate` again with the masked features that VerifyStaticFeatures accepts at its
   // pose; those that are inliers of the refined pose are appended to `matches`, and `joined`
   // gets `features` followed by them (the new matches index `joined`). False, with everything
   // unchanged, when none is accepted or that refinement fails.
-  bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
-                             FrameFeatures& joined, std::vector<Match>& matches,
-                             PoseEstimate& estimate, TrackingResult& result);
+  bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked, FrameFeatures& joined,
+                             std::vector<Match>& matches, PoseEstimate& estimate, TrackingResult& result);
   // The map points (visible_points_) and pixels of `matches` into `features`, in match order.
   void Correspondences(const FrameFeatures& features, const std::vector<Match>& matches,
-                       std::vector<Eigen::Vector3d>& points,
-                       std::vector<Eigen::Vector2d>& pixels) const;
+                       std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector2d>& pixels) const;
   // Applies ConfirmNewPoints to the estimate's matches (`features` is what they index):
   // confirms the points it accepts in the map, replaces `estimate` and counts the rejected ones.
-  void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches,
-                           PoseEstimate& estimate, TrackingResult& result);
+  void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
+                           TrackingResult& result);
   // Applies FlagCoherentMotion to the estimate's inliers: the flagged ones leave the pose (it
   // is refined again without them; kept only when that succeeds), their map points leave the
   // map, and their features (in moving_features_) make no new map points.
-  void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches,
-                            PoseEstimate& estimate, TrackingResult& result);
+  void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
+                            TrackingResult& result);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
@@ -169,8 +165,7 @@ class FrameTracker {
   // Makes the frame a keyframe: observations of its inlier matches plus new points from its
   // other depth features; then local BA. Returns the (possibly refined) world_from_camera.
   Pose InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
-                      const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
-                      TrackingResult& result);
+                      const std::vector<uint8_t>& inliers, const Pose& world_from_camera, TrackingResult& result);
 
   Camera camera_;
   TrackerOptions options_;
@@ -184,9 +179,9 @@ class FrameTracker {
   // Scratch of the current frame: the map points handed to the matcher.
   std::vector<int64_t> visible_ids_;
   std::vector<Eigen::Vector3d> visible_points_;
-  std::vector<float> visible_angles_;  // ORB angle of each point's reference observation
+  std::vector<float> visible_angles_;         // ORB angle of each point's reference observation
   std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
-  std::vector<uint8_t> moving_features_;  // 1 per feature of the frame flagged by coherent_motion
+  std::vector<uint8_t> moving_features_;      // 1 per feature of the frame flagged by coherent_motion
   cv::Mat visible_descriptors_;
 };
 

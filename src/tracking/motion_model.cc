@@ -8,13 +8,11 @@ namespace dynvo {
 Pose ConstantVelocityModel::Predict(double stamp) const {
   if (num_poses_ < 2) return last_world_from_camera_;
   double scale = 1.0;
-  if (last_gap_ > 0.0 && stamp > last_stamp_)
-    scale = std::clamp((stamp - last_stamp_) / last_gap_, 0.0, 3.0);
+  if (last_gap_ > 0.0 && stamp > last_stamp_) scale = std::clamp((stamp - last_stamp_) / last_gap_, 0.0, 3.0);
   Pose motion = previous_from_last_;
   if (scale != 1.0) {
     const Eigen::AngleAxisd rotation(previous_from_last_.linear());
-    motion = PoseFromAxisAngle(rotation.axis() * rotation.angle() * scale,
-                               previous_from_last_.translation() * scale);
+    motion = PoseFromAxisAngle(rotation.axis() * rotation.angle() * scale, previous_from_last_.translation() * scale);
   }
   return last_world_from_camera_ * motion;
 }

@@ -16,14 +16,12 @@ constexpr double kConfirmRmsFactor = 2.0;
 
 NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points_in_world,
                                       const std::vector<Eigen::Vector2d>& pixels,
-                                      const std::vector<uint8_t>& unconfirmed,
-                                      const PoseEstimate& estimate, const Camera& camera,
-                                      const PoseSolverOptions& pose, double max_shift_m) {
+                                      const std::vector<uint8_t>& unconfirmed, const PoseEstimate& estimate,
+                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m) {
   const size_t n = points_in_world.size();
   if (pixels.size() != n || unconfirmed.size() != n || estimate.inliers.size() != n)
-    throw InputError("ConfirmNewPoints: " + std::to_string(n) + " points, " +
-                     std::to_string(pixels.size()) + " pixels, " +
-                     std::to_string(unconfirmed.size()) + " flags and " +
+    throw InputError("ConfirmNewPoints: " + std::to_string(n) + " points, " + std::to_string(pixels.size()) +
+                     " pixels, " + std::to_string(unconfirmed.size()) + " flags and " +
                      std::to_string(estimate.inliers.size()) + " inlier flags");
   NewPointConfirmation out;
   out.estimate = estimate;
@@ -42,8 +40,9 @@ NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points
   const PoseEstimate from_trusted =
       RefinePose(points_in_world, pixels, camera, estimate.camera_from_world, pose, &trusted);
   if (from_trusted.ok)
-    out.shift_m = (estimate.camera_from_world.inverse().translation() -
-                   from_trusted.camera_from_world.inverse().translation()).norm();
+    out.shift_m =
+        (estimate.camera_from_world.inverse().translation() - from_trusted.camera_from_world.inverse().translation())
+            .norm();
   if (!from_trusted.ok || out.shift_m <= max_shift_m) {
     for (size_t i = 0; i < n; ++i) out.confirmed[i] = unconfirmed[i] && estimate.inliers[i];
     return out;
@@ -59,8 +58,7 @@ NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points
       use[i] = 1;
     }
   }
-  PoseEstimate joint =
-      RefinePose(points_in_world, pixels, camera, from_trusted.camera_from_world, pose, &use);
+  PoseEstimate joint = RefinePose(points_in_world, pixels, camera, from_trusted.camera_from_world, pose, &use);
   out.estimate = joint.ok ? std::move(joint) : from_trusted;
   for (size_t i = 0; i < n; ++i)
     if (unconfirmed[i] && estimate.inliers[i] && !out.estimate.inliers[i]) ++out.rejected;

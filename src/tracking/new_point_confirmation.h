@@ -35,8 +35,7 @@ struct NewPointConfirmation {
 // unconfirmed inlier, returns `estimate` unchanged. Throws InputError when the sizes differ.
 NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points_in_world,
                                       const std::vector<Eigen::Vector2d>& pixels,
-                                      const std::vector<uint8_t>& unconfirmed,
-                                      const PoseEstimate& estimate, const Camera& camera,
-                                      const PoseSolverOptions& pose, double max_shift_m);
+                                      const std::vector<uint8_t>& unconfirmed, const PoseEstimate& estimate,
+                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m);
 
 }  // namespace dynvo

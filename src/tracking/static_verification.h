@@ -25,8 +25,7 @@ namespace dynvo {
 // indexes `masked`. Empty when max_error_px <= 0 or nothing is masked. Throws InputError when
 // `taken` has the wrong size.
 std::vector<Match> VerifyStaticFeatures(const std::vector<Eigen::Vector3d>& points_in_world,
-                                        const cv::Mat& point_descriptors,
-                                        const std::vector<float>* point_angles_deg,
+                                        const cv::Mat& point_descriptors, const std::vector<float>* point_angles_deg,
                                         const FrameFeatures& masked, const Camera& camera,
                                         const Pose& camera_from_world, const MatchOptions& matching,
                                         double max_error_px, const std::vector<uint8_t>& taken);

@@ -50,9 +50,9 @@ TEST(DynvoCli, RunsAndWritesOutputs) {
   test::TempDir dir;
   const std::string seq = MakeSequence(dir);
   const std::string out = (dir.path() / "out").string();
-  const ToolOutcome o = RunTool(dir, "dynvo-cli",
-                                "run --quiet --dataset " + Quote(seq) + " --config " +
-                                    Quote(Config("paper.json")) + " --out " + Quote(out));
+  const ToolOutcome o = RunTool(
+      dir, "dynvo-cli",
+      "run --quiet --dataset " + Quote(seq) + " --config " + Quote(Config("paper.json")) + " --out " + Quote(out));
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(o.err.empty()) << "--quiet prints nothing: " << o.err;
   for (const char* f : {"trajectory.txt", "timing.csv", "run.json"})
@@ -79,8 +79,7 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
                      "dynamic_mask.erode_iterations");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set dynamic_mask.nonsense=1"),
                      "unknown key 'dynamic_mask.nonsense'");
-  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"),
-                     "features.num_features");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"), "features.num_features");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 99"), "beyond the last frame");
 
@@ -106,9 +105,9 @@ TEST(DynvoCli, ConfigKeysListsEveryKey) {
   test::TempDir dir;
   const ToolOutcome o = RunTool(dir, "dynvo-cli", "config-keys --markdown");
   ASSERT_EQ(o.exit_code, 0);
-  for (const char* key : {"dynamic_mask.erode_kernel_size", "dynamic_mask.backward", "features.num_features",
-                          "tracking.pose.huber_delta_px", "tracking.local_ba.window_keyframes", "dataset.depth_factor",
-                          "mask_source"})
+  for (const char* key :
+       {"dynamic_mask.erode_kernel_size", "dynamic_mask.backward", "features.num_features",
+        "tracking.pose.huber_delta_px", "tracking.local_ba.window_keyframes", "dataset.depth_factor", "mask_source"})
     EXPECT_NE(o.out.find(std::string("`") + key + "`"), std::string::npos) << key;
 }
 

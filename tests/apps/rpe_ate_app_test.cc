@@ -49,8 +49,7 @@ TEST(RpeApp, PrintsVariantAndDriftPerSecond) {
   const DriftFiles f = WriteDriftFiles(dir);
   const Outcome o = RunTool(dir, "rpe", f.gt + " " + f.est);
   ASSERT_EQ(o.exit_code, 0) << o.err;
-  EXPECT_EQ(o.out.substr(0, o.out.find('\n')),
-            "RPE per second: fixed delta 1 s, benchmark closest-index lookup");
+  EXPECT_EQ(o.out.substr(0, o.out.find('\n')), "RPE per second: fixed delta 1 s, benchmark closest-index lookup");
   EXPECT_NE(o.out.find("compared_pose_pairs 288 pairs\n"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("translational_error.rmse 0.050000 m\n"), std::string::npos) << o.out;
   EXPECT_NE(o.out.find("translational_error.max 0.050000 m\n"), std::string::npos);
@@ -83,15 +82,13 @@ TEST(RpeApp, PairsCsvAndNoSilentOverwrite) {
   const Outcome again = RunTool(dir, "rpe", f.gt + " " + f.est + " --pairs-out " + csv);
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
-  EXPECT_EQ(RunTool(dir, "rpe", f.gt + " " + f.est + " --pairs-out " + csv + " --force").exit_code,
-            0);
+  EXPECT_EQ(RunTool(dir, "rpe", f.gt + " " + f.est + " --pairs-out " + csv + " --force").exit_code, 0);
 }
 
 TEST(RpeApp, MalformedFileIsOneLineErrorNamingFileAndLine) {
   test::TempDir dir;
   const DriftFiles f = WriteDriftFiles(dir);
-  const std::string bad =
-      dir.Write("bad.txt", "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 0 zero 0 0 0 1\n");
+  const std::string bad = dir.Write("bad.txt", "# header\n1.0 0 0 0 0 0 0 1\n2.0 0 0 zero 0 0 0 1\n");
   const Outcome o = RunTool(dir, "rpe", f.gt + " " + bad);
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_EQ(CountLines(o.err), 1) << o.err;
@@ -133,8 +130,7 @@ TEST(RpeApp, TooFewPairsIsAnError) {
 
 TEST(AteApp, PrintsJsonAndAlignedTrajectory) {
   test::TempDir dir;
-  const Trajectory gt = test::MakeTrajectory(
-      200, 10.0, 0.03125, [](int, double t) { return test::WavyPose(t); });
+  const Trajectory gt = test::MakeTrajectory(200, 10.0, 0.03125, [](int, double t) { return test::WavyPose(t); });
   const Pose moved = PoseFromAxisAngle({0.3, 1.0, -0.2}, {2, -1, 4});
   Trajectory est = gt;
   for (StampedPose& p : est) p.world_from_camera = moved * p.world_from_camera;
@@ -152,8 +148,7 @@ TEST(AteApp, PrintsJsonAndAlignedTrajectory) {
   const Trajectory back = ReadTrajectory(aligned);
   ASSERT_EQ(back.size(), gt.size());
   for (std::size_t k = 0; k < gt.size(); ++k)
-    EXPECT_NEAR((back[k].world_from_camera.translation() -
-                 gt[k].world_from_camera.translation()).norm(), 0.0, 1e-6);
+    EXPECT_NEAR((back[k].world_from_camera.translation() - gt[k].world_from_camera.translation()).norm(), 0.0, 1e-6);
 
   const Outcome json = RunTool(dir, "ate", gt_path + " " + est_path + " --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
@@ -196,13 +191,11 @@ TEST(Apps, ReferenceValuesEndToEnd) {
   EXPECT_NE(rpe.out.find("translational_error.rmse 0.007161 m\n"), std::string::npos) << rpe.out;
   EXPECT_NE(rpe.out.find("rotational_error.rmse 0.455005 deg\n"), std::string::npos) << rpe.out;
   const Outcome frames = RunTool(dir, "rpe", gt + " " + est + " --delta-unit f");
-  EXPECT_NE(frames.out.find("translational_error.rmse 0.003381 m\n"), std::string::npos)
-      << frames.out;
+  EXPECT_NE(frames.out.find("translational_error.rmse 0.003381 m\n"), std::string::npos) << frames.out;
   const Outcome ate = RunTool(dir, "ate", gt + " " + est);
   ASSERT_EQ(ate.exit_code, 0) << ate.err;
   EXPECT_NE(ate.out.find("compared_pose_pairs 2223 pairs\n"), std::string::npos) << ate.out;
-  EXPECT_NE(ate.out.find("absolute_translational_error.rmse 0.008144 m\n"), std::string::npos)
-      << ate.out;
+  EXPECT_NE(ate.out.find("absolute_translational_error.rmse 0.008144 m\n"), std::string::npos) << ate.out;
 }
 
 }  // namespace

@@ -9,7 +9,10 @@ namespace {
 
 TEST(Camera, ProjectInvertsBackproject) {
   Camera cam;
-  cam.fx = 535.4; cam.fy = 539.2; cam.cx = 320.1; cam.cy = 247.6;
+  cam.fx = 535.4;
+  cam.fy = 539.2;
+  cam.cx = 320.1;
+  cam.cy = 247.6;
   const Eigen::Vector2d px(100.25, 400.5);
   const Eigen::Vector3d p = cam.Backproject(px, 2.5);
   EXPECT_DOUBLE_EQ(p.z(), 2.5);

@@ -21,8 +21,8 @@ ConfigRegistry Registry(Fields* f) {
   r.Bind("stage.ratio", &f->ratio, "a ratio");
   r.Bind("stage.on", &f->on, "a switch");
   r.Bind("other.seed", &f->seed, "a seed");
-  r.BindChoice("other.mode", {"a", "b"}, [f] { return f->mode; },
-               [f](const std::string& s) { f->mode = s; }, "a choice");
+  r.BindChoice(
+      "other.mode", {"a", "b"}, [f] { return f->mode; }, [f](const std::string& s) { f->mode = s; }, "a choice");
   return r;
 }
 
@@ -60,20 +60,22 @@ TEST(ConfigRegistry, UnknownKeyNamesKeyAndSource) {
 TEST(ConfigRegistry, WrongTypesAreRejectedWithKey) {
   Fields f;
   ConfigRegistry r = Registry(&f);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"stage": {"count": 1.5}})"), "c.json"); })
-                .find("key 'stage.count' expects an integer, got 1.5"),
+  EXPECT_NE(ErrorOf([&] {
+              r.Apply(nlohmann::json::parse(R"({"stage": {"count": 1.5}})"), "c.json");
+            }).find("key 'stage.count' expects an integer, got 1.5"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"stage": {"on": 1}})"), "c.json"); })
-                .find("key 'stage.on' expects true or false"),
+  EXPECT_NE(ErrorOf([&] {
+              r.Apply(nlohmann::json::parse(R"({"stage": {"on": 1}})"), "c.json");
+            }).find("key 'stage.on' expects true or false"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"other": {"seed": -1}})"), "c.json"); })
-                .find("'other.seed'"),
+  EXPECT_NE(
+      ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"other": {"seed": -1}})"), "c.json"); }).find("'other.seed'"),
+      std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              r.Apply(nlohmann::json::parse(R"({"other": {"mode": "c"}})"), "c.json");
+            }).find("one of \"a\", \"b\""),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"other": {"mode": "c"}})"), "c.json"); })
-                .find("one of \"a\", \"b\""),
-            std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse("[1]"), "c.json"); }).find("JSON object"),
-            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse("[1]"), "c.json"); }).find("JSON object"), std::string::npos);
   EXPECT_EQ(f.count, 3) << "a rejected value leaves the field alone";
 }
 

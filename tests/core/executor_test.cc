@@ -25,8 +25,14 @@ TEST(Executor, WithoutWorkersTasksRunOnTheCallerInTheOrderTheyAreGot) {
   Executor executor(0);
   const std::thread::id caller = std::this_thread::get_id();
   std::vector<int> order;
-  Task<std::thread::id> first = executor.Submit([&] { order.push_back(1); return std::this_thread::get_id(); });
-  Task<std::thread::id> second = executor.Submit([&] { order.push_back(2); return std::this_thread::get_id(); });
+  Task<std::thread::id> first = executor.Submit([&] {
+    order.push_back(1);
+    return std::this_thread::get_id();
+  });
+  Task<std::thread::id> second = executor.Submit([&] {
+    order.push_back(2);
+    return std::this_thread::get_id();
+  });
   EXPECT_TRUE(order.empty());  // nothing runs before it is asked for
   EXPECT_EQ(second.Get(), caller);
   EXPECT_EQ(first.Get(), caller);
@@ -85,10 +91,11 @@ TEST(Executor, ParallelForCoversEveryIndexOnceAndRethrowsTheFirstError) {
     executor.ParallelFor(100, [&hits](int i) { ++hits[static_cast<size_t>(i)]; });
     for (size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(hits[i].load(), 1) << "index " << i;
     std::atomic<int> ran{0};
-    EXPECT_THROW(executor.ParallelFor(10, [&ran](int i) {
-                   ++ran;
-                   if (i == 3) throw std::invalid_argument("index 3");
-                 }),
+    EXPECT_THROW(executor.ParallelFor(10,
+                                      [&ran](int i) {
+                                        ++ran;
+                                        if (i == 3) throw std::invalid_argument("index 3");
+                                      }),
                  std::invalid_argument);
     EXPECT_EQ(ran.load(), 10);  // every index ran although one failed
   }

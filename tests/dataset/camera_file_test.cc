@@ -24,9 +24,8 @@ std::string CameraFileError(const std::string& text) {
 
 TEST(CameraFile, ReadsAllKeys) {
   test::TempDir dir;
-  const std::string path =
-      dir.Write("camera.json",
-                R"({"width": 320, "height": 240, "fx": 300.5, "fy": 301, "cx": 160.25, "cy": 120,
+  const std::string path = dir.Write("camera.json",
+                                     R"({"width": 320, "height": 240, "fx": 300.5, "fy": 301, "cx": 160.25, "cy": 120,
           "distortion": [0.1, -0.2, 0.001, -0.002, 0.05], "depth_factor": 1000})");
   const CameraFile file = ReadCameraFile(path);
   EXPECT_EQ(file.camera.width, 320);
@@ -73,21 +72,16 @@ TEST(CameraFile, WriteReadRoundTrip) {
 TEST(CameraFile, ErrorsNameFileAndKey) {
   const std::string base = R"("width":640,"height":480,"fx":500,"fy":500,"cx":320)";
   EXPECT_NE(CameraFileError("{" + base + "}").find("missing key 'cy'"), std::string::npos);
-  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"fz":1})").find("unknown key 'fz'"),
+  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"fz":1})").find("unknown key 'fz'"), std::string::npos);
+  EXPECT_NE(CameraFileError(R"({"width":640,"height":480,"fx":-5,"fy":500,"cx":320,"cy":240})").find("key 'fx'"),
             std::string::npos);
-  EXPECT_NE(CameraFileError(R"({"width":640,"height":480,"fx":-5,"fy":500,"cx":320,"cy":240})")
-                .find("key 'fx'"),
-            std::string::npos);
-  EXPECT_NE(CameraFileError(R"({"width":64.5,"height":480,"fx":5,"fy":500,"cx":320,"cy":240})")
-                .find("key 'width'"),
+  EXPECT_NE(CameraFileError(R"({"width":64.5,"height":480,"fx":5,"fy":500,"cx":320,"cy":240})").find("key 'width'"),
             std::string::npos);
   EXPECT_NE(CameraFileError("{" + base + R"(,"cy":"240"})").find("key 'cy'"), std::string::npos);
-  EXPECT_NE(
-      CameraFileError("{" + base + R"(,"cy":240,"distortion":[1,2,3]})").find("key 'distortion'"),
-      std::string::npos);
-  EXPECT_NE(
-      CameraFileError("{" + base + R"(,"cy":240,"depth_factor":0})").find("key 'depth_factor'"),
-      std::string::npos);
+  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"distortion":[1,2,3]})").find("key 'distortion'"),
+            std::string::npos);
+  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"depth_factor":0})").find("key 'depth_factor'"),
+            std::string::npos);
   EXPECT_NE(CameraFileError("{" + base).find("not valid JSON"), std::string::npos);
   EXPECT_NE(CameraFileError("[1, 2]").find("expected a JSON object"), std::string::npos);
   EXPECT_EQ(CameraFileError("{" + base + R"(,"cy":240})"), "");

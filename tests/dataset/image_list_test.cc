@@ -39,13 +39,10 @@ TEST(ImageList, ErrorsNameFileAndLine) {
   const std::string good = "# h\n1.0 rgb/a.png\n";
   EXPECT_NE(ParseError(good + "2.0\n").find("rgb.txt:3: expected 2 columns"), std::string::npos);
   EXPECT_NE(ParseError(good + "2.0 rgb/b.png extra\n").find("rgb.txt:3:"), std::string::npos);
-  EXPECT_NE(ParseError(good + "\n\nx2.0 rgb/b.png\n").find("rgb.txt:5: timestamp"),
-            std::string::npos);
+  EXPECT_NE(ParseError(good + "\n\nx2.0 rgb/b.png\n").find("rgb.txt:5: timestamp"), std::string::npos);
   EXPECT_NE(ParseError(good + "inf rgb/b.png\n").find("rgb.txt:3:"), std::string::npos);
-  EXPECT_NE(ParseError(good + "1.0 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"),
-            std::string::npos);
-  EXPECT_NE(ParseError(good + "0.9 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"),
-            std::string::npos);
+  EXPECT_NE(ParseError(good + "1.0 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"), std::string::npos);
+  EXPECT_NE(ParseError(good + "0.9 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"), std::string::npos);
   EXPECT_EQ(ParseError(good + "1.000001 rgb/b.png\n"), "");
 }
 
@@ -60,9 +57,7 @@ TEST(ImageList, MissingFileIsNamed) {
   }
 }
 
-TEST(ImageList, EmptyListHasNoEntries) {
-  EXPECT_TRUE(ParseImageList("# nothing\n\n", "rgb.txt").empty());
-}
+TEST(ImageList, EmptyListHasNoEntries) { EXPECT_TRUE(ParseImageList("# nothing\n\n", "rgb.txt").empty()); }
 
 }  // namespace
 }  // namespace dynvo

@@ -18,8 +18,7 @@ Pairs ReferenceAssociate(const std::vector<double>& a, const std::vector<double>
   std::vector<std::tuple<double, double, double, size_t, size_t>> candidates;
   for (size_t i = 0; i < a.size(); ++i)
     for (size_t j = 0; j < b.size(); ++j)
-      if (std::abs(a[i] - b[j]) < max)
-        candidates.emplace_back(std::abs(a[i] - b[j]), a[i], b[j], i, j);
+      if (std::abs(a[i] - b[j]) < max) candidates.emplace_back(std::abs(a[i] - b[j]), a[i], b[j], i, j);
   std::sort(candidates.begin(), candidates.end());
   std::set<size_t> used_a, used_b;
   Pairs pairs;

@@ -33,10 +33,7 @@ TEST(ParseTrajectory, ReadsTumLinesWithCommentsCrlfAndSeparators) {
   EXPECT_EQ(t[0].world_from_camera.translation(), Eigen::Vector3d(1, 2, 3));
   EXPECT_EQ(t[1].world_from_camera.translation(), Eigen::Vector3d(4, 5, 6));
   // 90 degrees about z maps x to y.
-  EXPECT_NEAR(
-      (t[1].world_from_camera.linear() * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY())
-          .norm(),
-      0, 1e-6);
+  EXPECT_NEAR((t[1].world_from_camera.linear() * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(), 0, 1e-6);
   EXPECT_NEAR((t[2].world_from_camera.linear() - Eigen::Matrix3d::Identity()).norm(), 0, 1e-12);
 }
 
@@ -47,11 +44,9 @@ TEST(ParseTrajectory, ErrorsNameFileAndLine) {
   EXPECT_NE(ParseError(good + "\n2 0 0 x 0 0 0 1\n").find("gt.txt:4:"), std::string::npos);
   EXPECT_NE(ParseError(good + "2 0 0 nan 0 0 0 1\n").find("gt.txt:3:"), std::string::npos);
   EXPECT_NE(ParseError(good + "2 0 0 0 0 0 0 0\n").find("gt.txt:3: quaternion"), std::string::npos);
-  EXPECT_NE(ParseError(good + "0.5 0 0 0 0 0 0 1\n").find("gt.txt:3: timestamps must increase"),
+  EXPECT_NE(ParseError(good + "0.5 0 0 0 0 0 0 1\n").find("gt.txt:3: timestamps must increase"), std::string::npos);
+  EXPECT_NE(ParseError(good + "1 0 0 0 0 0 0 1\n\n0.99 0 0 0 0 0 0 1\n").find("gt.txt:5: timestamps"),
             std::string::npos);
-  EXPECT_NE(
-      ParseError(good + "1 0 0 0 0 0 0 1\n\n0.99 0 0 0 0 0 0 1\n").find("gt.txt:5: timestamps"),
-      std::string::npos);
   EXPECT_EQ(ParseError(good), "");
 }
 
@@ -95,9 +90,9 @@ TEST(WriteTrajectory, RoundTripKeepsStampsAndPoses) {
   for (size_t k = 0; k < in.size(); ++k) {
     // Written with 6 decimals for stamps and 7 for poses: half a unit of the last digit.
     EXPECT_NEAR(out[k].stamp, in[k].stamp, 5e-7 + 1e-9);
-    EXPECT_NEAR((out[k].world_from_camera.translation() - in[k].world_from_camera.translation())
-                    .lpNorm<Eigen::Infinity>(),
-                0, 5e-8 + 1e-12);
+    EXPECT_NEAR(
+        (out[k].world_from_camera.translation() - in[k].world_from_camera.translation()).lpNorm<Eigen::Infinity>(), 0,
+        5e-8 + 1e-12);
     // Quaternion components within 5e-8 each: rotation within a few 1e-7 rad.
     EXPECT_LT(RotationAngle(out[k].world_from_camera.inverse() * in[k].world_from_camera), 1e-6);
   }

@@ -81,8 +81,8 @@ TEST(TumDatasetShared, IntrinsicsChosenFromTheFolderName) {
 
 // Depth statistics over the frames of a sequence.
 struct DepthSummary {
-  double min_valid_fraction = 1;    // lowest per-frame fraction of pixels with depth
-  double max_outside_fraction = 0;  // highest per-frame fraction of valid pixels outside 0.3..10 m
+  double min_valid_fraction = 1;            // lowest per-frame fraction of pixels with depth
+  double max_outside_fraction = 0;          // highest per-frame fraction of valid pixels outside 0.3..10 m
   float min_depth = 1e9f, max_depth = 0;    // metres, over valid pixels of all frames
   float min_median = 1e9f, max_median = 0;  // metres, per-frame median valid depth
 };
@@ -99,11 +99,9 @@ DepthSummary SummariseDepth(const TumDataset& dataset, size_t step) {
       summary.min_valid_fraction = 0;
       continue;
     }
-    summary.min_valid_fraction =
-        std::min(summary.min_valid_fraction, valid_count / static_cast<double>(valid.total()));
+    summary.min_valid_fraction = std::min(summary.min_valid_fraction, valid_count / static_cast<double>(valid.total()));
     const int outside = cv::countNonZero(valid & ((frame.depth < 0.3f) | (frame.depth > 10.0f)));
-    summary.max_outside_fraction =
-        std::max(summary.max_outside_fraction, outside / static_cast<double>(valid_count));
+    summary.max_outside_fraction = std::max(summary.max_outside_fraction, outside / static_cast<double>(valid_count));
     values.clear();
     for (auto it = frame.depth.begin<float>(); it != frame.depth.end<float>(); ++it)
       if (*it > 0) values.push_back(*it);
@@ -132,10 +130,9 @@ TEST(TumDatasetShared, DepthIsPlausibleAndGroundtruthCoversTheFrames) {
     EXPECT_LE(depth.max_depth, 65535 / 5000.0f) << folder;
     EXPECT_GT(depth.min_median, 0.5f) << folder;
     EXPECT_LT(depth.max_median, 5.0f) << folder;
-    std::printf(
-        "%s: valid >= %.3f, outside 0.3..10 m <= %.4f, depth %.3f..%.3f m, medians %.2f..%.2f m\n",
-        folder, depth.min_valid_fraction, depth.max_outside_fraction, depth.min_depth,
-        depth.max_depth, depth.min_median, depth.max_median);
+    std::printf("%s: valid >= %.3f, outside 0.3..10 m <= %.4f, depth %.3f..%.3f m, medians %.2f..%.2f m\n", folder,
+                depth.min_valid_fraction, depth.max_outside_fraction, depth.min_depth, depth.max_depth,
+                depth.min_median, depth.max_median);
 
     ASSERT_TRUE(dataset.has_groundtruth()) << folder;
     const Trajectory& gt = dataset.groundtruth();
@@ -160,9 +157,7 @@ std::pair<double, double> MedianLoadMs(const TumDataset& dataset) {
     const std::clock_t cpu_start = std::clock();
     const RgbdFrame frame = dataset.Load(i);
     cpu.push_back(1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
-    wall.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   std::nth_element(wall.begin(), wall.begin() + wall.size() / 2, wall.end());
   std::nth_element(cpu.begin(), cpu.begin() + cpu.size() / 2, cpu.end());

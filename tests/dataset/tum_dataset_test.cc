@@ -36,9 +36,7 @@ std::string InputErrorOf(Action action) {
   return "";
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+bool Contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(TumDatasetOptions, CheckNamesTheKey) {
   TumDatasetOptions options;
@@ -84,8 +82,7 @@ TEST(TumDataset, LoadsAssociatedFramesWithDepthInMetres) {
     EXPECT_EQ(frame.bgr.at<cv::Vec3b>(7, 300), cv::Vec3b(300 % 256, 7, 10 * i));
     // Gray is the BT.601 luma of the BGR pixel (OpenCV's 0.299 R + 0.587 G + 0.114 B).
     const cv::Vec3b bgr = frame.bgr.at<cv::Vec3b>(200, 100);
-    EXPECT_NEAR(frame.gray.at<uchar>(200, 100), 0.114 * bgr[0] + 0.587 * bgr[1] + 0.299 * bgr[2],
-                0.51);
+    EXPECT_NEAR(frame.gray.at<uchar>(200, 100), 0.114 * bgr[0] + 0.587 * bgr[1] + 0.299 * bgr[2], 0.51);
     // PNG 5000 (1 + i) -> 1 + i metres; 0 stays 0 (no data); 12345 -> 2.469 m.
     EXPECT_FLOAT_EQ(frame.depth.at<float>(100, 100), 1.0f + i);
     EXPECT_EQ(frame.depth.at<float>(100, 0), 0.0f);
@@ -121,8 +118,7 @@ TEST(TumDataset, AssociationHonoursMaxTimeDifference) {
   EXPECT_TRUE(Contains(message, "dataset.max_time_difference")) << message;
 
   // Without depth for frame 1, that RGB frame is dropped and counted.
-  test::WriteList(seq.folder, "depth.txt",
-                  {seq.depth_stamps[0], seq.depth_stamps[2], seq.depth_stamps[3]},
+  test::WriteList(seq.folder, "depth.txt", {seq.depth_stamps[0], seq.depth_stamps[2], seq.depth_stamps[3]},
                   {seq.depth_files[0], seq.depth_files[2], seq.depth_files[3]});
   const TumDataset dataset(seq.folder);
   ASSERT_EQ(dataset.size(), 3u);
@@ -148,30 +144,25 @@ TEST(TumDataset, FolderAndListErrorsNameThePath) {
 
   const TumTestFolder seq = WriteTumTestFolder(dir, {});
   std::filesystem::remove(seq.folder + "/depth.txt");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
-                       seq.folder + "/depth.txt: missing file"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/depth.txt: missing file"));
   std::filesystem::remove(seq.folder + "/rgb.txt");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
-                       seq.folder + "/rgb.txt: missing file"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt: missing file"));
 }
 
 TEST(TumDataset, BadListLinesNameFileAndLine) {
   TempDir dir;
   const TumTestFolder seq = WriteTumTestFolder(dir, {});
   // WriteList puts two comment lines first: data lines are 3, 4, 5.
-  test::WriteList(seq.folder, "depth.txt",
-                  {seq.depth_stamps[0], seq.depth_stamps[2], seq.depth_stamps[1]},
+  test::WriteList(seq.folder, "depth.txt", {seq.depth_stamps[0], seq.depth_stamps[2], seq.depth_stamps[1]},
                   {seq.depth_files[0], seq.depth_files[2], seq.depth_files[1]});
   EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
                        seq.folder + "/depth.txt:5: timestamps must strictly increase"));
   dir.Write("synthetic/rgb.txt", "# c\n100.0 rgb/a.png\n100.1\n");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
-                       seq.folder + "/rgb.txt:3: expected 2 columns"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt:3: expected 2 columns"));
   dir.Write("synthetic/groundtruth.txt", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0\n");
   test::WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, seq.rgb_files);
   test::WriteList(seq.folder, "depth.txt", seq.depth_stamps, seq.depth_files);
-  EXPECT_TRUE(
-      Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/groundtruth.txt:2:"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/groundtruth.txt:2:"));
   dir.Write("synthetic/groundtruth.txt", "# gt\n1 0 0 0 0 0 0 1\n2 0.5 0 0 0 0 0 1\n");
   const TumDataset dataset(seq.folder);
   EXPECT_TRUE(dataset.has_groundtruth());
@@ -196,13 +187,11 @@ TEST(TumDataset, ImageErrorsNameThePng) {
   EXPECT_TRUE(Contains(message, png(seq.rgb_files[0]) + ": missing image")) << message;
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt:3")) << message;
   message = InputErrorOf([&] { dataset.Load(1); });
-  EXPECT_TRUE(Contains(message, png(seq.depth_files[1]) +
-                                    ": depth image must be 16-bit 1-channel, got 8-bit 1-channel"))
+  EXPECT_TRUE(
+      Contains(message, png(seq.depth_files[1]) + ": depth image must be 16-bit 1-channel, got 8-bit 1-channel"))
       << message;
   message = InputErrorOf([&] { dataset.Load(2); });
-  EXPECT_TRUE(
-      Contains(message, png(seq.rgb_files[2]) + ": image is 320x240, the camera is 640x480"))
-      << message;
+  EXPECT_TRUE(Contains(message, png(seq.rgb_files[2]) + ": image is 320x240, the camera is 640x480")) << message;
   message = InputErrorOf([&] { dataset.Load(3); });
   EXPECT_TRUE(Contains(message, png(seq.rgb_files[3]) + ": RGB image must be 8-bit")) << message;
   message = InputErrorOf([&] { dataset.Load(4); });
@@ -217,8 +206,7 @@ TEST(TumDataset, AcceptsGrayAndBgraRgbImages) {
   spec.frames = 2;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
   test::WriteImage(seq.folder + "/" + seq.rgb_files[0], cv::Mat(480, 640, CV_8UC1, cv::Scalar(77)));
-  test::WriteImage(seq.folder + "/" + seq.rgb_files[1],
-                   cv::Mat(480, 640, CV_8UC4, cv::Scalar(10, 20, 30, 128)));
+  test::WriteImage(seq.folder + "/" + seq.rgb_files[1], cv::Mat(480, 640, CV_8UC4, cv::Scalar(10, 20, 30, 128)));
   const TumDataset dataset(seq.folder);
   RgbdFrame frame = dataset.Load(0);
   EXPECT_EQ(frame.bgr.type(), CV_8UC3);
@@ -257,8 +245,7 @@ TEST(TumDataset, CameraPrecedenceOptionsThenFileThenName) {
   EXPECT_FALSE(from_options.raw_camera().HasDistortion());
 
   dir.Write(spec.name + "/camera.json", R"({"width":640,"height":480,"fx":500})");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
-                       seq.folder + "/camera.json: missing key 'fy'"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
 
   // A trailing separator does not change the name, hence the camera.
   std::filesystem::remove(seq.folder + "/camera.json");
@@ -295,8 +282,7 @@ cv::Point2d DistortedPixel(const Camera& camera, cv::Point2d undistorted) {
   const std::vector<cv::Point3d> ray = {
       {(undistorted.x - camera.cx) / camera.fx, (undistorted.y - camera.cy) / camera.fy, 1.0}};
   std::vector<cv::Point2d> pixel;
-  cv::projectPoints(ray, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(),
-                    pixel);
+  cv::projectPoints(ray, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(), pixel);
   return pixel[0];
 }
 
@@ -309,15 +295,13 @@ TEST(TumDataset, UndistortionMovesPixelsWherePredicted) {
   const Camera fr1 = TumCameraForSequence(spec.name);
   const cv::Point target(60, 50);  // near a corner, where fr1's distortion is large
   const cv::Point2d source = DistortedPixel(fr1, target);
-  const cv::Point source_px(static_cast<int>(std::lround(source.x)),
-                            static_cast<int>(std::lround(source.y)));
+  const cv::Point source_px(static_cast<int>(std::lround(source.x)), static_cast<int>(std::lround(source.y)));
   ASSERT_GT(cv::norm(source - cv::Point2d(target)), 5.0) << "distortion too small to test";
 
   // A 5x5 white square in RGB, a 3x3 block of 2 m in depth and mask, centred at the
   // distorted position; elsewhere black, 1 m, unmasked.
   cv::Mat rgb(480, 640, CV_8UC3, cv::Scalar::all(0));
-  cv::rectangle(rgb, cv::Rect(source_px.x - 2, source_px.y - 2, 5, 5), cv::Scalar::all(255),
-                cv::FILLED);
+  cv::rectangle(rgb, cv::Rect(source_px.x - 2, source_px.y - 2, 5, 5), cv::Scalar::all(255), cv::FILLED);
   cv::Mat depth(480, 640, CV_16UC1, cv::Scalar(5000));
   depth(cv::Rect(source_px.x - 1, source_px.y - 1, 3, 3)).setTo(10000);
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
@@ -379,15 +363,14 @@ TEST(TumDataset, MasksByRgbStamp) {
   TumTestFolderSpec spec;
   spec.frames = 3;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }),
-                       seq.folder + "/masks.txt: missing file"));
+  EXPECT_TRUE(
+      Contains(InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }), seq.folder + "/masks.txt: missing file"));
 
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask(cv::Rect(10, 20, 30, 40)).setTo(255);
   test::WriteImage(seq.folder + "/masks/a.png", mask);
   test::WriteImage(seq.folder + "/masks/c.png", cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(0)));
-  test::WriteList(seq.folder, "masks.txt", {seq.rgb_stamps[0], seq.rgb_stamps[2]},
-                  {"masks/a.png", "masks/c.png"});
+  test::WriteList(seq.folder, "masks.txt", {seq.rgb_stamps[0], seq.rgb_stamps[2]}, {"masks/a.png", "masks/c.png"});
   const TumDataset dataset(seq.folder);
   EXPECT_TRUE(dataset.has_masks());
   const cv::Mat loaded = dataset.LoadMask(0);
@@ -397,8 +380,7 @@ TEST(TumDataset, MasksByRgbStamp) {
   EXPECT_TRUE(Contains(message, seq.folder + "/masks.txt: no mask entry")) << message;
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt:4")) << message;
   message = InputErrorOf([&] { dataset.LoadMask(2); });
-  EXPECT_TRUE(Contains(message, seq.folder + "/masks/c.png: mask must be 8-bit 1-channel"))
-      << message;
+  EXPECT_TRUE(Contains(message, seq.folder + "/masks/c.png: mask must be 8-bit 1-channel")) << message;
 }
 
 }  // namespace

@@ -14,8 +14,7 @@ cv::Mat TestBgr(int width, int height, int k) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       image.at<cv::Vec3b>(y, x) =
-          cv::Vec3b(static_cast<uchar>(x % 256), static_cast<uchar>(y % 256),
-                    static_cast<uchar>((10 * k) % 256));
+          cv::Vec3b(static_cast<uchar>(x % 256), static_cast<uchar>(y % 256), static_cast<uchar>((10 * k) % 256));
   return image;
 }
 
@@ -29,12 +28,11 @@ cv::Mat TestDepth(int width, int height, int k) {
 void WriteImage(const std::string& path, const cv::Mat& image) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   // Light compression: the tests write many 640x480 PNGs and only need them readable.
-  if (!cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 1}))
-    throw std::runtime_error("cannot write " + path);
+  if (!cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 1})) throw std::runtime_error("cannot write " + path);
 }
 
-void WriteList(const std::string& folder, const std::string& list_name,
-               const std::vector<double>& stamps, const std::vector<std::string>& files) {
+void WriteList(const std::string& folder, const std::string& list_name, const std::vector<double>& stamps,
+               const std::vector<std::string>& files) {
   std::ofstream out(std::filesystem::path(folder) / list_name, std::ios::binary);
   out << "# " << list_name << "\n# timestamp filename\n";
   char buffer[64];

@@ -36,8 +36,8 @@ cv::Mat TestDepth(int width, int height, int k);
 TumTestFolder WriteTumTestFolder(const TempDir& dir, const TumTestFolderSpec& spec);
 
 // Writes a list file "stamp path" per line into folder/list_name.
-void WriteList(const std::string& folder, const std::string& list_name,
-               const std::vector<double>& stamps, const std::vector<std::string>& files);
+void WriteList(const std::string& folder, const std::string& list_name, const std::vector<double>& stamps,
+               const std::vector<std::string>& files);
 
 // Writes an image, creating folders; fails the test when OpenCV cannot write it.
 void WriteImage(const std::string& path, const cv::Mat& image);

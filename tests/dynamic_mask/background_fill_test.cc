@@ -16,7 +16,9 @@ const cv::Size kFrame(320, 240);
 
 // The wall as frame `shift` sees it: the camera pans 6 px to the right per frame, so that a wall
 // point at frame-t-1 pixel x is at x - 6 in frame t (x_t = H x_t-1 with the translation below).
-cv::Mat WallView(const cv::Mat& wall, int frame) { return wall(cv::Rect(6 * frame, 0, kFrame.width, kFrame.height)).clone(); }
+cv::Mat WallView(const cv::Mat& wall, int frame) {
+  return wall(cv::Rect(6 * frame, 0, kFrame.width, kFrame.height)).clone();
+}
 
 Eigen::Matrix3d PanOneFrame() {
   Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
@@ -61,12 +63,12 @@ TEST_F(BackgroundFill, TheMarginGrowsTheFilledRegion) {
   const cv::Mat current = WithMover(WallView(wall, 1), box, &mask);
   cv::Mat inner = cv::Mat::zeros(kFrame, CV_8UC1);
   inner(cv::Rect(102, 62, 46, 76)).setTo(255);  // a mask 2 px short of the mover on every side
-  EXPECT_GT(CountDifferent(FillMaskFromBackground(current, inner, WallView(wall, 0), PanOneFrame(), 0),
-                           WallView(wall, 1)),
-            0);
-  EXPECT_EQ(CountDifferent(FillMaskFromBackground(current, inner, WallView(wall, 0), PanOneFrame(), 2),
-                           WallView(wall, 1)),
-            0);
+  EXPECT_GT(
+      CountDifferent(FillMaskFromBackground(current, inner, WallView(wall, 0), PanOneFrame(), 0), WallView(wall, 1)),
+      0);
+  EXPECT_EQ(
+      CountDifferent(FillMaskFromBackground(current, inner, WallView(wall, 0), PanOneFrame(), 2), WallView(wall, 1)),
+      0);
 }
 
 TEST_F(BackgroundFill, WhatWasBehindTheMoverIsCarriedOverFrames) {
@@ -75,10 +77,10 @@ TEST_F(BackgroundFill, WhatWasBehindTheMoverIsCarriedOverFrames) {
   const cv::Rect box(100, 60, 50, 80);
   cv::Mat mask;
   const cv::Mat frame0 = WallView(wall, 0);
-  const cv::Mat background1 = FillMaskFromBackground(WithMover(WallView(wall, 1), box, &mask), mask, frame0,
-                                                     PanOneFrame(), 0);
-  const cv::Mat background2 = FillMaskFromBackground(WithMover(WallView(wall, 2), box, &mask), mask, background1,
-                                                     PanOneFrame(), 0);
+  const cv::Mat background1 =
+      FillMaskFromBackground(WithMover(WallView(wall, 1), box, &mask), mask, frame0, PanOneFrame(), 0);
+  const cv::Mat background2 =
+      FillMaskFromBackground(WithMover(WallView(wall, 2), box, &mask), mask, background1, PanOneFrame(), 0);
   EXPECT_EQ(CountDifferent(background2, WallView(wall, 2)), 0);
 }
 
@@ -107,8 +109,8 @@ TEST_F(BackgroundFill, FillsAsAWarpOfTheWholeFrameWould) {
   // warped box is most of the frame and its edge pixels are interpolated.
   const Eigen::Matrix3d h = test::SmallMotion(0.01, -6.3, 1.7, 0.0, 0.0);
   cv::Mat mask_a, mask_b;
-  const cv::Mat current = WithMover(WithMover(WallView(wall, 1), cv::Rect(10, 15, 30, 40), &mask_a),
-                                    cv::Rect(250, 170, 40, 50), &mask_b);
+  const cv::Mat current =
+      WithMover(WithMover(WallView(wall, 1), cv::Rect(10, 15, 30, 40), &mask_a), cv::Rect(250, 170, 40, 50), &mask_b);
   const cv::Mat mask = mask_a | mask_b;
   const cv::Mat previous = WallView(wall, 0);
   const int margin = 2;
@@ -126,7 +128,8 @@ TEST_F(BackgroundFill, FillsAsAWarpOfTheWholeFrameWould) {
 TEST_F(BackgroundFill, BadInputsThrow) {
   const cv::Mat current = WallView(wall, 1);
   EXPECT_THROW(FillMaskFromBackground(current, cv::Mat::zeros(10, 10, CV_8UC1), current, PanOneFrame(), 0), InputError);
-  EXPECT_THROW(FillMaskFromBackground(current, cv::Mat::zeros(kFrame, CV_8UC1), current, PanOneFrame(), -1), InputError);
+  EXPECT_THROW(FillMaskFromBackground(current, cv::Mat::zeros(kFrame, CV_8UC1), current, PanOneFrame(), -1),
+               InputError);
 }
 
 }  // namespace

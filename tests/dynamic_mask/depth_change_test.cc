@@ -16,8 +16,7 @@ namespace {
 // Depth of a scene seen by `camera` at `world_from_camera`: a wall at z = 3 m (world) and a
 // box whose front face is at z = `box_z`, x in [-0.3, 0.3], y in [-0.4, 0.4] (ray casting).
 // `box` (optional) gets the pixels that see the box.
-cv::Mat RenderDepth(const Camera& camera, const Pose& world_from_camera, double box_z,
-                    cv::Mat* box = nullptr) {
+cv::Mat RenderDepth(const Camera& camera, const Pose& world_from_camera, double box_z, cv::Mat* box = nullptr) {
   cv::Mat depth(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
   if (box) *box = cv::Mat(depth.size(), CV_8UC1, cv::Scalar(0));
   const Eigen::Matrix3d r = world_from_camera.linear();
@@ -62,7 +61,7 @@ TEST(DepthChange, ABoxThatMovedTowardTheCameraIsMarked) {
   const cv::Mat mask = DepthChangeMask(depth, earlier_depth, camera, earlier.inverse() * current, options);
   const int box_px = cv::countNonZero(box);
   ASSERT_GT(box_px, 10000);
-  EXPECT_GT(cv::countNonZero(mask & box), 0.9 * box_px);      // recall
+  EXPECT_GT(cv::countNonZero(mask & box), 0.9 * box_px);           // recall
   EXPECT_LT(cv::countNonZero(mask & ~box), 0.002 * mask.total());  // nothing of the wall
   // A change below the threshold is not marked.
   options.threshold = 0.08;
@@ -74,8 +73,8 @@ TEST(DepthChange, PixelsWithoutDepthAreNeverMarked) {
   const Pose identity = Pose::Identity();
   cv::Mat earlier_depth(camera.height, camera.width, CV_32FC1, cv::Scalar(2.0f));
   cv::Mat depth(camera.height, camera.width, CV_32FC1, cv::Scalar(1.0f));  // all changed
-  depth.colRange(0, 320).setTo(0.0f);           // no reading on the left
-  earlier_depth.rowRange(0, 240).setTo(0.0f);   // none in the earlier frame's top half
+  depth.colRange(0, 320).setTo(0.0f);                                      // no reading on the left
+  earlier_depth.rowRange(0, 240).setTo(0.0f);                              // none in the earlier frame's top half
   const cv::Mat mask = DepthChangeMask(depth, earlier_depth, camera, identity, DepthChangeOptions{});
   EXPECT_EQ(cv::countNonZero(mask.colRange(0, 318)), 0);
   EXPECT_EQ(cv::countNonZero(mask.rowRange(0, 238)), 0);
@@ -101,8 +100,10 @@ TEST(DepthChange, OptionsAndInputsAreChecked) {
   options.max_share = 0.0;
   EXPECT_THROW(options.Check(), InputError);
   const cv::Mat depth(48, 64, CV_32FC1, cv::Scalar(1.0f));
-  EXPECT_THROW(DepthChangeMask(depth, cv::Mat(48, 64, CV_16UC1), Camera{}, Pose::Identity(), DepthChangeOptions{}), InputError);
-  EXPECT_THROW(DepthChangeMask(depth, cv::Mat(40, 64, CV_32FC1), Camera{}, Pose::Identity(), DepthChangeOptions{}), InputError);
+  EXPECT_THROW(DepthChangeMask(depth, cv::Mat(48, 64, CV_16UC1), Camera{}, Pose::Identity(), DepthChangeOptions{}),
+               InputError);
+  EXPECT_THROW(DepthChangeMask(depth, cv::Mat(40, 64, CV_32FC1), Camera{}, Pose::Identity(), DepthChangeOptions{}),
+               InputError);
 }
 
 }  // namespace

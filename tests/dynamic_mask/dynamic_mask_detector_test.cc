@@ -22,23 +22,22 @@ struct SceneSpec {
   Eigen::Matrix3d background = test::SmallMotion(0.01, 5.0, -3.0, 1e-5, 0.0);
   cv::Point velocity{10, 4};
   cv::Rect object_at_t{260, 180, 120, 100};
-  bool uniform_object = false;   // constant grey interior instead of a texture
-  double object_texture_px = 4;  // blur of the object's texture (its blobs are a few times larger)
+  bool uniform_object = false;       // constant grey interior instead of a texture
+  double object_texture_px = 4;      // blur of the object's texture (its blobs are a few times larger)
   double background_texture_px = 2;  // blur of the background's texture
 };
 
 struct Scene {
-  cv::Mat frames[3];     // t-1, t, t+1
-  cv::Mat object_mask;   // object pixels in frame t
+  cv::Mat frames[3];    // t-1, t, t+1
+  cv::Mat object_mask;  // object pixels in frame t
   Eigen::Matrix3d background_current_from_previous;
 };
 
 Scene MakeScene(const SceneSpec& spec) {
   // The camera looks at a large canvas; frame 0 sees its centre.
   const cv::Size canvas_size(1000, 800);
-  const cv::Mat canvas = spec.uniform_object
-                             ? test::RandomTexture(canvas_size, 77, spec.background_texture_px, 0, 120)
-                             : test::RandomTexture(canvas_size, 77, spec.background_texture_px);
+  const cv::Mat canvas = spec.uniform_object ? test::RandomTexture(canvas_size, 77, spec.background_texture_px, 0, 120)
+                                             : test::RandomTexture(canvas_size, 77, spec.background_texture_px);
   const cv::Mat object_texture = test::RandomTexture(spec.object_at_t.size(), 91, spec.object_texture_px);
   const Eigen::Vector2d centre(spec.object_at_t.x + spec.object_at_t.width / 2.0,
                                spec.object_at_t.y + spec.object_at_t.height / 2.0);
@@ -220,9 +219,9 @@ RoundsOutcome CompareRounds(const Scene& scene, const HomographyOptions& homogra
       test::MeanTransferDifference(out.one.current_from_previous, scene.background_current_from_previous, kImage);
   out.error_more =
       test::MeanTransferDifference(out.more.current_from_previous, scene.background_current_from_previous, kImage);
-  std::cout << "  H error: 1 round " << out.error_one << " px, " << out.more.rounds_run << " rounds "
-            << out.error_more << " px; static tracks " << out.one.num_static_tracks << " -> "
-            << out.more.num_static_tracks << " of " << out.more.num_tracks << "\n";
+  std::cout << "  H error: 1 round " << out.error_one << " px, " << out.more.rounds_run << " rounds " << out.error_more
+            << " px; static tracks " << out.one.num_static_tracks << " -> " << out.more.num_static_tracks << " of "
+            << out.more.num_tracks << "\n";
   return out;
 }
 

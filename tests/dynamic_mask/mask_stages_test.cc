@@ -74,8 +74,8 @@ TEST(CompensateMotion, ValidRegionStaysInsideTheImageAreaOfBothFrames) {
     for (int x = 0; x < kImage.width; ++x) {
       const Eigen::Vector2d s = test::Transfer(inverse, Eigen::Vector2d(x, y));
       const int sx = static_cast<int>(std::lround(s.x())), sy = static_cast<int>(std::lround(s.y()));
-      const bool source_in_area = sx >= 0 && sy >= 0 && sx < kImage.width && sy < kImage.height &&
-                                  in_area.at<uint8_t>(sy, sx) != 0;
+      const bool source_in_area =
+          sx >= 0 && sy >= 0 && sx < kImage.width && sy < kImage.height && in_area.at<uint8_t>(sy, sx) != 0;
       const bool expected = source_in_area && in_area.at<uint8_t>(y, x) != 0;
       const bool valid = out.valid.at<uint8_t>(y, x) != 0;
       outside += valid && !expected;
@@ -116,7 +116,8 @@ TEST(WarpBinaryMasks, EqualsEachMaskWarpedAlone) {
       }
       cv::Mat mask = cv::Mat::zeros(kImage, CV_8UC1);
       for (int b = 0; b < 1 + (trial + m) % 3; ++b)
-        cv::rectangle(mask, cv::Rect(rng.uniform(0, 640), rng.uniform(0, 480), rng.uniform(5, 200), rng.uniform(5, 200)),
+        cv::rectangle(mask,
+                      cv::Rect(rng.uniform(0, 640), rng.uniform(0, 480), rng.uniform(5, 200), rng.uniform(5, 200)),
                       cv::Scalar(255), cv::FILLED);
       masks.push_back(mask);
     }
@@ -134,9 +135,9 @@ TEST(WarpBinaryMasks, EqualsEachMaskWarpedAlone) {
       ASSERT_EQ(CountDifferent(together[m], alone), 0) << "trial " << trial << ", mask " << m;
     }
   }
-  EXPECT_THROW(WarpBinaryMasks(std::vector<cv::Mat>(9, cv::Mat::zeros(kImage, CV_8UC1)), Eigen::Matrix3d::Identity(),
-                               kImage),
-               InputError);
+  EXPECT_THROW(
+      WarpBinaryMasks(std::vector<cv::Mat>(9, cv::Mat::zeros(kImage, CV_8UC1)), Eigen::Matrix3d::Identity(), kImage),
+      InputError);
   EXPECT_THROW(WarpBinaryMasks({cv::Mat::zeros(kImage, CV_8UC1), cv::Mat::zeros(10, 10, CV_8UC1)},
                                Eigen::Matrix3d::Identity(), kImage),
                InputError);
@@ -204,7 +205,7 @@ TEST(OtsuThreshold, IgnoresInvalidPixels) {
   const int with_mask = OtsuThreshold(image, valid);
   EXPECT_GE(with_mask, 10);
   EXPECT_LT(with_mask, 60);
-  EXPECT_GE(OtsuThreshold(image), 60);  // counted, the block moves the threshold
+  EXPECT_GE(OtsuThreshold(image), 60);                                    // counted, the block moves the threshold
   EXPECT_EQ(OtsuThreshold(image, cv::Mat::zeros(100, 100, CV_8UC1)), 0);  // no valid pixel
 }
 
@@ -296,9 +297,9 @@ TEST(MaskMorphology, SquareDilationAddsTheMarginOnEverySide) {
   DilateMask(MorphShape::kRect, 2 * 4 + 1, 1, &grown);
   ASSERT_EQ(grown.type(), CV_8UC1);
   EXPECT_EQ(cv::countNonZero(grown), (5 + 8) * (3 + 8));
-  EXPECT_NE(grown.at<uint8_t>(6, 16), 0);   // corner of the grown box
+  EXPECT_NE(grown.at<uint8_t>(6, 16), 0);  // corner of the grown box
   EXPECT_NE(grown.at<uint8_t>(16, 28), 0);
-  EXPECT_EQ(grown.at<uint8_t>(5, 20), 0);   // one pixel beyond the margin
+  EXPECT_EQ(grown.at<uint8_t>(5, 20), 0);  // one pixel beyond the margin
   EXPECT_EQ(grown.at<uint8_t>(11, 29), 0);
   cv::Mat same = mask.clone();
   DilateMask(MorphShape::kRect, 2 * 0 + 1, 1, &same);  // margin 0
@@ -312,7 +313,7 @@ TEST(MaskMorphology, SquareDilationAddsTheMarginOnEverySide) {
 
 TEST(MaskMorphology, CleanMaskErodesThenDilates) {
   cv::Mat mask = cv::Mat::zeros(100, 100, CV_8UC1);
-  mask(cv::Rect(5, 5, 2, 2)).setTo(255);     // noise: removed, not regrown
+  mask(cv::Rect(5, 5, 2, 2)).setTo(255);      // noise: removed, not regrown
   mask(cv::Rect(40, 40, 20, 20)).setTo(255);  // object: 20 -> 14 -> 29 (16x16 dilation adds 15)
   CleanMask(DynamicMaskOptions(), &mask);
   EXPECT_EQ(cv::countNonZero(mask(cv::Rect(0, 0, 20, 20))), 0);
@@ -339,7 +340,7 @@ TEST(MaskRegions, RegionsTouchingKeepsWholeRegionsASeedTouches) {
   regions(cv::Rect(30, 40, 10, 10)).setTo(255);
   cv::Mat seeds = cv::Mat::zeros(60, 60, CV_8UC1);
   seeds.at<uint8_t>(14, 14) = 255;
-  seeds.at<uint8_t>(49, 39) = 255;  // last pixel of the diagonal pair's second square
+  seeds.at<uint8_t>(49, 39) = 255;           // last pixel of the diagonal pair's second square
   seeds(cv::Rect(50, 50, 5, 5)).setTo(255);  // on no region: adds nothing
   const cv::Mat kept = RegionsTouching(regions, seeds);
   EXPECT_EQ(cv::countNonZero(kept), 300);

@@ -38,8 +38,7 @@ TEST(Ate, RigidlyMovedEstimateAlignsToZero) {
   const Trajectory aligned = AlignTrajectory(est, r.gt_from_est, 1.0);
   ASSERT_EQ(aligned.size(), gt.size());
   for (std::size_t k = 0; k < gt.size(); ++k)
-    EXPECT_NEAR((aligned[k].world_from_camera.matrix() - gt[k].world_from_camera.matrix()).norm(),
-                0.0, 1e-9);
+    EXPECT_NEAR((aligned[k].world_from_camera.matrix() - gt[k].world_from_camera.matrix()).norm(), 0.0, 1e-9);
 }
 
 TEST(Ate, ScaleErrorOnACircleIsKnown) {

@@ -12,7 +12,7 @@ TEST(ErrorStatistics, EvenCountLikeNumpy) {
   EXPECT_EQ(s.count, 4u);
   EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(7.5));  // (16 + 1 + 9 + 4) / 4
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
-  EXPECT_DOUBLE_EQ(s.median, 2.5);          // mean of the two middle values
+  EXPECT_DOUBLE_EQ(s.median, 2.5);           // mean of the two middle values
   EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));  // population std, ddof = 0
   EXPECT_DOUBLE_EQ(s.min, 1.0);
   EXPECT_DOUBLE_EQ(s.max, 4.0);

@@ -20,9 +20,8 @@ constexpr double kTol = 6e-7;
 TEST(ReferenceValues, AteFr2DeskOrb) {
   DYNVO_REQUIRE_SHARED(dir);
   const std::string eval = dir + "/data/eval/";
-  const AteResult r =
-      ComputeAte(ReadTrajectory(eval + "fr2_desk_groundtruth.txt"),
-                 ReadTrajectory(eval + "fr2_desk_ORB.txt"), AteOptions{});
+  const AteResult r = ComputeAte(ReadTrajectory(eval + "fr2_desk_groundtruth.txt"),
+                                 ReadTrajectory(eval + "fr2_desk_ORB.txt"), AteOptions{});
   EXPECT_EQ(r.pairs.size(), 2223u);
   EXPECT_NEAR(r.translation_m.rmse, 0.008144, kTol);
   EXPECT_NEAR(r.translation_m.mean, 0.007514, kTol);
@@ -35,9 +34,8 @@ TEST(ReferenceValues, AteFr2DeskOrb) {
 TEST(ReferenceValues, AteFr1XyzRgbdslam) {
   DYNVO_REQUIRE_SHARED(dir);
   const std::string eval = dir + "/data/eval/";
-  const AteResult r = ComputeAte(
-      ReadTrajectory(eval + "freiburg1_xyz-groundtruth.txt"),
-      ReadTrajectory(eval + "freiburg1_xyz-rgbdslam.txt"), AteOptions{});
+  const AteResult r = ComputeAte(ReadTrajectory(eval + "freiburg1_xyz-groundtruth.txt"),
+                                 ReadTrajectory(eval + "freiburg1_xyz-rgbdslam.txt"), AteOptions{});
   EXPECT_EQ(r.pairs.size(), 786u);
   EXPECT_NEAR(r.translation_m.rmse, 0.013473, kTol);
   EXPECT_NEAR(r.translation_m.mean, 0.012029, kTol);
@@ -52,8 +50,8 @@ RpeResult Fr2DeskRpe(const std::string& dir, DeltaUnit unit, ClosestLookup close
   RpeOptions options;
   options.unit = unit;
   options.closest = closest;
-  return ComputeRpe(ReadTrajectory(eval + "fr2_desk_groundtruth.txt"),
-                    ReadTrajectory(eval + "fr2_desk_ORB.txt"), options);
+  return ComputeRpe(ReadTrajectory(eval + "fr2_desk_groundtruth.txt"), ReadTrajectory(eval + "fr2_desk_ORB.txt"),
+                    options);
 }
 
 TEST(ReferenceValues, RpePerSecondFr2Desk) {

@@ -31,8 +31,7 @@ TEST(RigidAlignment, NeverReturnsAReflection) {
   for (const auto& p : source) target.emplace_back(p.x(), p.y(), -p.z());
   const Pose estimate = AlignRigid(source, target);
   EXPECT_NEAR(estimate.linear().determinant(), 1.0, 1e-12);
-  EXPECT_NEAR((estimate.linear() * estimate.linear().transpose() -
-               Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((estimate.linear() * estimate.linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
 }
 
 TEST(RigidAlignment, RejectsMismatchedOrEmptyInput) {

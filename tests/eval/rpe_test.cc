@@ -56,8 +56,7 @@ TEST(Rpe, DriftPerSecondIsTheDriftVelocity) {
   const double v = 0.05;  // m/s
   const Trajectory gt = Line(321, 0.4);
   Trajectory est = gt;
-  for (StampedPose& p : est)
-    p.world_from_camera.translation() += Eigen::Vector3d(0, 0, v * (p.stamp - 1000.0));
+  for (StampedPose& p : est) p.world_from_camera.translation() += Eigen::Vector3d(0, 0, v * (p.stamp - 1000.0));
   const RpeResult r = ComputeRpe(gt, est, RpeOptions{});
   EXPECT_EQ(r.pairs.size(), 288u);
   EXPECT_NEAR(r.translation_m.rmse, v, 1e-9);
@@ -144,8 +143,7 @@ TEST(Rpe, PairsTooFarFromGroundtruthAreDropped) {
   for (const StampedPose& p : full)
     if (p.stamp <= 1003.0 || p.stamp >= 1005.0) gt.push_back(p);
   // The estimate is twice as dense (64 Hz) so its stamps fall between groundtruth stamps.
-  const Trajectory est =
-      MakeTrajectory(641, 1000.0, kDt / 2, [](int, double t) { return WavyPose(t); });
+  const Trajectory est = MakeTrajectory(641, 1000.0, kDt / 2, [](int, double t) { return WavyPose(t); });
   const RpeResult r = ComputeRpe(gt, est, RpeOptions{});
   // Usable estimated stamps: within 1/16 s of a groundtruth stamp, i.e. outside
   // (1003 + 1/16, 1005 - 1/16). Pairs (i, i + 64) with both usable, j != 640.
@@ -207,17 +205,16 @@ TEST(Rpe, ErrorsForUnusableInput) {
   const Trajectory gt = Wavy(100);
   Trajectory far = gt;
   for (StampedPose& p : far) p.stamp += 1000.0;
-  EXPECT_THROW(ComputeRpe(gt, far, RpeOptions{}), InputError);          // no overlap
+  EXPECT_THROW(ComputeRpe(gt, far, RpeOptions{}), InputError);  // no overlap
   EXPECT_THROW(ComputeRpe(gt, Trajectory(gt.begin(), gt.begin() + 1), RpeOptions{}),
-               InputError);                                             // one pose
-  EXPECT_THROW(ComputeRpe(gt, Wavy(20), RpeOptions{}), InputError);     // < 1 s: no pairs
+               InputError);                                          // one pose
+  EXPECT_THROW(ComputeRpe(gt, Wavy(20), RpeOptions{}), InputError);  // < 1 s: no pairs
   // Groundtruth only for the first 3 estimated stamps: every 1 s pair is dropped.
   try {
     ComputeRpe(Trajectory(gt.begin(), gt.begin() + 3), gt, RpeOptions{});
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("only 0 of 67 pose pairs"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("only 0 of 67 pose pairs"), std::string::npos) << e.what();
   }
   Trajectory unsorted = gt;
   std::swap(unsorted[3], unsorted[4]);

@@ -14,15 +14,14 @@ namespace dynvo {
 namespace {
 
 // Literal O(N * M) transcription of associate.py, to compare the windowed version against.
-std::vector<std::pair<std::size_t, std::size_t>> ReferenceAssociate(
-    const std::vector<double>& first, const std::vector<double>& second, double offset,
-    double max_difference) {
+std::vector<std::pair<std::size_t, std::size_t>> ReferenceAssociate(const std::vector<double>& first,
+                                                                    const std::vector<double>& second, double offset,
+                                                                    double max_difference) {
   std::vector<std::tuple<double, double, double, std::size_t, std::size_t>> candidates;
   for (std::size_t a = 0; a < first.size(); ++a)
     for (std::size_t b = 0; b < second.size(); ++b)
       if (std::abs(first[a] - (second[b] + offset)) < max_difference)
-        candidates.emplace_back(std::abs(first[a] - (second[b] + offset)), first[a], second[b],
-                                a, b);
+        candidates.emplace_back(std::abs(first[a] - (second[b] + offset)), first[a], second[b], a, b);
   std::sort(candidates.begin(), candidates.end());
   std::vector<bool> used_a(first.size()), used_b(second.size());
   std::vector<std::pair<std::size_t, std::size_t>> matches;

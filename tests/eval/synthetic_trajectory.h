@@ -11,8 +11,7 @@ namespace dynvo::test {
 
 // `count` poses at stamps t0 + k * dt with world_from_camera = pose_at(k, stamp). Stamps of
 // dyadic dt (0.03125 = 1/32 s) are exact in binary, so "t + 1 s" hits a stamp exactly.
-inline Trajectory MakeTrajectory(int count, double t0, double dt,
-                                 const std::function<Pose(int, double)>& pose_at) {
+inline Trajectory MakeTrajectory(int count, double t0, double dt, const std::function<Pose(int, double)>& pose_at) {
   Trajectory trajectory;
   for (int k = 0; k < count; ++k) {
     const double stamp = t0 + k * dt;

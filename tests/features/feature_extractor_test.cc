@@ -65,8 +65,8 @@ TEST(FeatureExtractor, QuadtreeCoversMoreCellsThanPlainOrb) {
   std::vector<cv::KeyPoint> orb;
   cv::ORB::create(1000)->detect(image, orb);
   const int ours = CellsCovered(f.keypoints), plain = CellsCovered(orb);
-  std::cout << "cells covered (of 48): quadtree " << ours << " (" << f.size()
-            << " features), cv::ORB " << plain << " (" << orb.size() << " features)\n";
+  std::cout << "cells covered (of 48): quadtree " << ours << " (" << f.size() << " features), cv::ORB " << plain << " ("
+            << orb.size() << " features)\n";
   EXPECT_GE(ours, plain + 15);
   EXPECT_GE(ours, 40);
 }
@@ -91,10 +91,9 @@ TEST(FeatureExtractor, DescriptorsFollowTheImage) {
     const cv::Point2f target = ka.pt + cv::Point2f(7, 3);
     const double tolerance = 0.75 * ka.size / 31.0 + 0.01;  // 0.75 level pixel
     for (size_t j = 0; j < b.size(); ++j) {
-      if (b.keypoints[j].octave != ka.octave || cv::norm(b.keypoints[j].pt - target) > tolerance)
-        continue;
-      const double d = cv::norm(a.descriptors.row(static_cast<int>(i)),
-                                b.descriptors.row(static_cast<int>(j)), cv::NORM_HAMMING);
+      if (b.keypoints[j].octave != ka.octave || cv::norm(b.keypoints[j].pt - target) > tolerance) continue;
+      const double d =
+          cv::norm(a.descriptors.row(static_cast<int>(i)), b.descriptors.row(static_cast<int>(j)), cv::NORM_HAMMING);
       distances.push_back(d);
       ++found_per_level[ka.octave];
       if (ka.octave == 0 && d == 0) ++level0_identical;
@@ -104,9 +103,8 @@ TEST(FeatureExtractor, DescriptorsFollowTheImage) {
   ASSERT_GE(distances.size(), 0.3 * a.size());
   for (int l = 0; l < 8; ++l) EXPECT_GT(found_per_level[l], 5) << "level " << l;
   const double median = Median(distances);
-  std::cout << "features " << a.size() << ", found again " << distances.size()
-            << ", median Hamming " << median << ", level 0 identical " << level0_identical
-            << " of " << found_per_level[0] << "\n";
+  std::cout << "features " << a.size() << ", found again " << distances.size() << ", median Hamming " << median
+            << ", level 0 identical " << level0_identical << " of " << found_per_level[0] << "\n";
   EXPECT_LE(median, 20.0);
   // At level 0 the shift is whole pixels: the same patch, the same descriptor.
   EXPECT_GE(level0_identical, 0.8 * found_per_level[0]);
@@ -114,7 +112,10 @@ TEST(FeatureExtractor, DescriptorsFollowTheImage) {
 
 TEST(FeatureExtractor, BackprojectsWithKnownDepth) {
   Camera camera;
-  camera.fx = 517.3; camera.fy = 516.5; camera.cx = 318.6; camera.cy = 255.3;
+  camera.fx = 517.3;
+  camera.fy = 516.5;
+  camera.cx = 318.6;
+  camera.cy = 255.3;
   const cv::Mat image = test::TexturedImage(4);
   // A tilted plane: depth grows with the column, 1.5 m to 2.78 m.
   cv::Mat depth(480, 640, CV_32FC1);
@@ -163,22 +164,23 @@ TEST(FeatureExtractor, InvalidAndFarDepthGiveNoPoint) {
 
 TEST(FeatureExtractor, UndistortsKeypoints) {
   Camera camera;  // TUM freiburg1 calibration
-  camera.fx = 517.306408; camera.fy = 516.469215; camera.cx = 318.643040; camera.cy = 255.313989;
+  camera.fx = 517.306408;
+  camera.fy = 516.469215;
+  camera.cx = 318.643040;
+  camera.cy = 255.313989;
   camera.distortion = {0.262383, -0.953104, -0.005358, 0.002628, 1.163314};
   FeatureExtractor extractor{FeatureOptions{}};
   const FrameFeatures f = extractor.Extract(test::TexturedImage(6), cv::Mat(), camera);
   ASSERT_GT(f.size(), 500u);
   std::vector<cv::Point2f> detected, undistorted;
   for (const cv::KeyPoint& k : f.keypoints) detected.push_back(k.pt);
-  cv::undistortPoints(detected, undistorted, camera.K(), camera.DistCoeffs(), cv::noArray(),
-                      camera.K());
+  cv::undistortPoints(detected, undistorted, camera.K(), camera.DistCoeffs(), cv::noArray(), camera.K());
   // Independent check: distorting the undistorted pixel again gives the detected one.
   std::vector<cv::Point3d> rays;
   for (const Eigen::Vector2d& p : f.pixels)
     rays.emplace_back((p.x() - camera.cx) / camera.fx, (p.y() - camera.cy) / camera.fy, 1.0);
   std::vector<cv::Point2d> redistorted;
-  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(),
-                    redistorted);
+  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(), redistorted);
   double largest_shift = 0.0;
   for (size_t i = 0; i < f.size(); ++i) {
     EXPECT_NEAR(f.pixels[i].x(), undistorted[i].x, 1e-3);
@@ -253,7 +255,8 @@ TEST(FeatureExtractor, FromCornersChoosesDetectedCornersOffTheMaskAndDescribesTh
 
   // Off the mask, chosen among the detected corners of their level, the budget spent elsewhere.
   int all_inside = 0;
-  for (const cv::KeyPoint& k : all.keypoints) all_inside += person.contains(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y)));
+  for (const cv::KeyPoint& k : all.keypoints)
+    all_inside += person.contains(cv::Point(cvRound(k.pt.x), cvRound(k.pt.y)));
   EXPECT_GT(all_inside, 50);
   EXPECT_GT(on_image.size(), all.size() - 40);
   for (const cv::KeyPoint& k : on_image.keypoints) {
@@ -275,8 +278,8 @@ TEST(FeatureExtractor, FromCornersChoosesDetectedCornersOffTheMaskAndDescribesTh
     ASSERT_EQ(k.pt, on_filled.keypoints[i].pt);
     const double reach = 25.0 * std::pow(1.2, k.octave);  // descriptor patch and blur, level-0 px
     const cv::Rect2d grown(person.x - reach, person.y - reach, person.width + 2 * reach, person.height + 2 * reach);
-    const bool same = cv::norm(on_image.descriptors.row(static_cast<int>(i)), on_filled.descriptors.row(static_cast<int>(i)),
-                               cv::NORM_HAMMING) == 0.0;
+    const bool same = cv::norm(on_image.descriptors.row(static_cast<int>(i)),
+                               on_filled.descriptors.row(static_cast<int>(i)), cv::NORM_HAMMING) == 0.0;
     if (grown.contains(cv::Point2d(k.pt.x, k.pt.y))) {
       near_changed += same ? 0 : 1;
     } else {
@@ -335,8 +338,7 @@ TEST(FeatureExtractor, RejectsBadInput) {
   const cv::Mat image = test::TexturedImage(9);
   EXPECT_THROW(extractor.Extract(image, cv::Mat(480, 640, CV_16UC1), Camera{}), InputError);
   EXPECT_THROW(extractor.Extract(image, cv::Mat(240, 320, CV_32FC1), Camera{}), InputError);
-  EXPECT_THROW(extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(480, 640, CV_32FC1)),
-               InputError);
+  EXPECT_THROW(extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(480, 640, CV_32FC1)), InputError);
   FeatureOptions bad;
   bad.num_levels = 0;
   EXPECT_THROW(FeatureExtractor{bad}, InputError);
@@ -344,8 +346,7 @@ TEST(FeatureExtractor, RejectsBadInput) {
 
 TEST(FeatureExtractor, TinyImageGivesNoFeatures) {
   FeatureExtractor extractor{FeatureOptions{}};
-  const FrameFeatures f = extractor.Extract(cv::Mat(30, 30, CV_8UC1, cv::Scalar(9)), cv::Mat(),
-                                            Camera{});
+  const FrameFeatures f = extractor.Extract(cv::Mat(30, 30, CV_8UC1, cv::Scalar(9)), cv::Mat(), Camera{});
   EXPECT_EQ(f.size(), 0u);
   EXPECT_EQ(f.descriptors.cols, 32);
 }
@@ -383,19 +384,17 @@ TEST(FeatureExtractor, RealImageTiming) {
       orb_cpu_ms.push_back(ProcessCpuMs() - c1);
       const auto t3 = std::chrono::steady_clock::now();
       parallel.Extract(gray, cv::Mat(), Camera{});
-      parallel_ms.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t3).count());
+      parallel_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t3).count());
       ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
       orb_ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
       fewest = std::min(fewest, f.size());
       fewest_cells = std::min(fewest_cells, CellsCovered(f.keypoints));
       cells_margin = std::min(cells_margin, CellsCovered(f.keypoints) - CellsCovered(k));
     }
-  std::cout << "extraction on fr1_rpy 640x480: median " << Median(ms) << " ms wall, "
-            << Median(cpu_ms) << " ms CPU (cv::ORB(1000) " << Median(orb_ms) << " ms wall, "
-            << Median(orb_cpu_ms) << " ms CPU), parallel_levels " << Median(parallel_ms)
-            << " ms wall, fewest features " << fewest << ", fewest cells "
-            << fewest_cells << "/48, smallest lead over cv::ORB " << cells_margin << " cells\n";
+  std::cout << "extraction on fr1_rpy 640x480: median " << Median(ms) << " ms wall, " << Median(cpu_ms)
+            << " ms CPU (cv::ORB(1000) " << Median(orb_ms) << " ms wall, " << Median(orb_cpu_ms)
+            << " ms CPU), parallel_levels " << Median(parallel_ms) << " ms wall, fewest features " << fewest
+            << ", fewest cells " << fewest_cells << "/48, smallest lead over cv::ORB " << cells_margin << " cells\n";
   EXPECT_GE(fewest, 900u);
   EXPECT_GE(fewest_cells, 30);
   EXPECT_GE(cells_margin, 0);

@@ -55,8 +55,7 @@ TEST(FeatureOptions, RefillModesNeedTheRefill) {
 }
 
 TEST(FeatureOptions, DistributionRoundTrip) {
-  for (FeatureDistribution d :
-       {FeatureDistribution::kQuadtree, FeatureDistribution::kGrid, FeatureDistribution::kNone})
+  for (FeatureDistribution d : {FeatureDistribution::kQuadtree, FeatureDistribution::kGrid, FeatureDistribution::kNone})
     EXPECT_EQ(ParseFeatureDistribution(ToString(d), "features.distribution"), d);
   try {
     ParseFeatureDistribution("octree", "features.distribution");

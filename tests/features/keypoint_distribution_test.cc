@@ -16,8 +16,7 @@ std::vector<cv::KeyPoint> Clustered() {
   std::vector<cv::KeyPoint> keypoints;
   for (int i = 0; i < 2000; ++i)
     keypoints.emplace_back(cv::Point2f(corner(rng), corner(rng)), 7.f, -1.f, 50.f + i % 50);
-  for (int i = 0; i < 200; ++i)
-    keypoints.emplace_back(cv::Point2f(ux(rng), uy(rng)), 7.f, -1.f, 10.f + i % 10);
+  for (int i = 0; i < 200; ++i) keypoints.emplace_back(cv::Point2f(ux(rng), uy(rng)), 7.f, -1.f, 10.f + i % 10);
   return keypoints;
 }
 

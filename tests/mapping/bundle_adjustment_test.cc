@@ -27,8 +27,7 @@ void BuildScene(Scene& s, int num_keyframes, double pixel_noise, unsigned seed) 
   for (const Eigen::Vector3d& p : s.true_points)
     s.point_ids.push_back(s.map.AddPoint(p, cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 0));
   for (int k = 0; k < num_keyframes; ++k) {
-    const Pose world_from_camera =
-        PoseFromAxisAngle({0.0, 0.02 * k, 0.01 * k}, {0.08 * k, 0.02 * k, 0.0});
+    const Pose world_from_camera = PoseFromAxisAngle({0.0, 0.02 * k, 0.01 * k}, {0.08 * k, 0.02 * k, 0.0});
     const Pose camera_from_world = world_from_camera.inverse();
     s.true_camera_from_world.push_back(camera_from_world);
     Keyframe keyframe;
@@ -90,8 +89,7 @@ void CheckLowersReprojectionErrorOfPerturbedKeyframes(double virtual_baseline_m)
     s.map.SetKeyframePose(k, delta * s.true_camera_from_world[k]);
   }
   for (size_t i = 0; i < s.point_ids.size(); ++i)
-    s.map.SetPointPosition(s.point_ids[i],
-                           s.true_points[i] + 0.02 * Eigen::Vector3d(n01(rng), n01(rng), n01(rng)));
+    s.map.SetPointPosition(s.point_ids[i], s.true_points[i] + 0.02 * Eigen::Vector3d(n01(rng), n01(rng), n01(rng)));
   double perturbed_error = 0;
   for (size_t k = 2; k < 7; ++k)
     perturbed_error += TranslationError(s.map.keyframes()[k].camera_from_world, s.true_camera_from_world[k]);
@@ -150,8 +148,7 @@ TEST(BundleAdjustment, RemovesGrossOutliers) {
   // Noise-free otherwise: once the outliers are out of the second round, the exact solution
   // is the optimum again.
   EXPECT_LT(report.final_inlier_rms_px, 0.01);
-  EXPECT_LT(TranslationError(map.keyframes().back().camera_from_world, s.true_camera_from_world.back()),
-            1e-4);
+  EXPECT_LT(TranslationError(map.keyframes().back().camera_from_world, s.true_camera_from_world.back()), 1e-4);
   EXPECT_LE(map.num_points(), points_before);
 }
 

@@ -15,8 +15,7 @@ TEST(KeyframeOptions, CheckNamesTheKey) {
     options.Check();
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("keyframes.min_tracked_ratio must be in [0, 1]"),
-              std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("keyframes.min_tracked_ratio must be in [0, 1]"), std::string::npos);
   }
   options = {};
   options.max_frames_between = 0;

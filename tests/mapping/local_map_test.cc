@@ -63,7 +63,7 @@ TEST(LocalMap, DropsOldestKeyframesAndTheirPoints) {
   for (int64_t frame = 0; frame < 10; ++frame) {
     std::vector<int64_t> ids;
     if (shared < 0) shared = map.AddPoint({0, 0, 1}, Descriptor(0), frame);
-    ids.push_back(shared);  // seen by every keyframe: must survive
+    ids.push_back(shared);                                         // seen by every keyframe: must survive
     ids.push_back(map.AddPoint({0, 1, 1}, Descriptor(1), frame));  // seen by this one only
     map.AddKeyframe(MakeKeyframe(frame, ids));
     EXPECT_LE(map.num_keyframes(), 3u);

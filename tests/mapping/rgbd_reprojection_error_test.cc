@@ -18,8 +18,7 @@ struct Evaluation {
   RowMajor jq{3, 4}, jt{3, 3}, jx{3, 3};
 };
 
-Evaluation Evaluate(const ceres::CostFunction& cost, const double* q, const double* t,
-                    const double* x) {
+Evaluation Evaluate(const ceres::CostFunction& cost, const double* q, const double* t, const double* x) {
   Evaluation e;
   const double* parameters[3] = {q, t, x};
   double* jacobians[3] = {e.jq.data(), e.jt.data(), e.jx.data()};

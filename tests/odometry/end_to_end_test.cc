@@ -26,9 +26,7 @@
 namespace dynvo {
 namespace {
 
-std::string ConfigPath(const std::string& name) {
-  return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name;
-}
+std::string ConfigPath(const std::string& name) { return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name; }
 
 class EndToEnd : public ::testing::Test {
  protected:
@@ -221,7 +219,9 @@ TEST_F(EndToEnd, ThreadsChangeNoResult) {
   // the frames decoded ahead; on one, everything runs in turn: the same trajectory and the same
   // counts, in paper mode, with every mask addition, the triplet, and the baseline.
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
-      {"paper.json", {}}, {"dynvo.json", {}}, {"baseline.json", {}},
+      {"paper.json", {}},
+      {"dynvo.json", {}},
+      {"baseline.json", {}},
       {"paper.json", {"dynamic_mask.backward=\"triplet\""}}};
   for (const auto& [config, overrides] : cases) {
     const std::string ahead = Run(config, "ahead_" + config + std::to_string(overrides.size()), overrides, 3);
@@ -247,8 +247,7 @@ TEST_F(EndToEnd, AFrameThatFailsToLoadKeepsEveryFrameBeforeIt) {
   }
   ASSERT_FALSE(bad_image.empty());
   std::ofstream((copy / bad_image).string(), std::ios::trunc) << "not a png";
-  const std::vector<std::vector<std::string>> variants = {
-      {}, {"dynamic_mask.backward=\"triplet\""}};
+  const std::vector<std::vector<std::string>> variants = {{}, {"dynamic_mask.backward=\"triplet\""}};
   for (size_t v = 0; v < 2 * variants.size(); ++v) {
     RunRequest request;
     request.dataset = copy.string();
@@ -298,10 +297,9 @@ TEST_F(EndToEnd, DebugFramesWriteThePanels) {
   request.quiet = true;
   request.debug_frames = {40};
   RunOdometry(request);
-  for (const char* panel : {"compensated", "difference", "forward_mask", "backward_mask", "fused_mask",
-                            "features", "panels"})
-    EXPECT_TRUE(std::filesystem::exists(request.out_dir + "/debug/frame_000040_" + panel + ".png"))
-        << panel;
+  for (const char* panel :
+       {"compensated", "difference", "forward_mask", "backward_mask", "fused_mask", "features", "panels"})
+    EXPECT_TRUE(std::filesystem::exists(request.out_dir + "/debug/frame_000040_" + panel + ".png")) << panel;
   // The feature list: a header, then one line per feature; some of them pose inliers.
   std::ifstream list(request.out_dir + "/debug/frame_000040_features.csv");
   std::string line;
@@ -310,8 +308,7 @@ TEST_F(EndToEnd, DebugFramesWriteThePanels) {
   int rows = 0, inliers = 0;
   while (std::getline(list, line)) {
     ++rows;
-    const bool known = line.find(",kept,") != std::string::npos ||
-                       line.find(",removed,") != std::string::npos ||
+    const bool known = line.find(",kept,") != std::string::npos || line.find(",removed,") != std::string::npos ||
                        line.find(",readmitted,") != std::string::npos;
     EXPECT_TRUE(known) << line;
     inliers += line.back() == '1';

@@ -118,8 +118,7 @@ TEST(MapOcclusionEndToEnd, DepthChangeSeedsFindThePersonTheDetectorMisses) {
   EXPECT_GT(with["precision"].get<double>(), 0.7);
 
   // Where nothing moves, the depth does not change either: nothing seeds, nothing is removed.
-  const std::string still =
-      WriteSequence((dir.path() / "still").string(), Scenario::kNone, CameraPathPreset::kXyz);
+  const std::string still = WriteSequence((dir.path() / "still").string(), Scenario::kNone, CameraPathPreset::kXyz);
   const nlohmann::json still_report = RunReport(still, (dir.path() / "still_out").string(), change_seeds);
   EXPECT_EQ(still_report["counts"]["features_removed"].get<int>(), 0);
 }

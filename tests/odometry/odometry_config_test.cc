@@ -11,9 +11,7 @@
 namespace dynvo {
 namespace {
 
-std::string ConfigPath(const std::string& name) {
-  return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name;
-}
+std::string ConfigPath(const std::string& name) { return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name; }
 
 std::string LoadError(const std::string& path, const std::vector<std::string>& overrides) {
   try {
@@ -71,9 +69,9 @@ TEST(OdometryConfig, TheDefaultsAreTheRecommendedConfig) {
 
 TEST(OdometryConfig, EveryKeyIsTheFieldsStructPath) {
   // A key's first part names a member of OdometryConfig (or is one), so `--set` reads like code.
-  const std::vector<std::string> sections = {"dataset.", "camera.", "mask_source", "homography.", "dynamic_mask.",
-                                             "depth_change.", "map_occlusion.", "depth_trim.", "features.",
-                                             "tracking.", "run."};
+  const std::vector<std::string> sections = {
+      "dataset.",       "camera.",     "mask_source", "homography.", "dynamic_mask.", "depth_change.",
+      "map_occlusion.", "depth_trim.", "features.",   "tracking.",   "run."};
   for (const std::string& line : DescribeConfigKeys()) {
     bool known = false;
     for (const std::string& s : sections) known = known || line.rfind(s, 0) == 0;
@@ -104,25 +102,23 @@ TEST(OdometryConfig, ErrorsNameFileAndKey) {
             std::string::npos);
   const std::string not_json = dir.Write("broken.json", "{\"features\": ");
   EXPECT_NE(LoadError(not_json, {}).find("broken.json: not valid JSON"), std::string::npos);
-  EXPECT_NE(LoadError(dir.path().string() + "/missing.json", {}).find("missing.json: cannot open"),
-            std::string::npos);
+  EXPECT_NE(LoadError(dir.path().string() + "/missing.json", {}).find("missing.json: cannot open"), std::string::npos);
   const std::string range = LoadError("", {"dynamic_mask.erode_iterations=-1"});
   EXPECT_NE(range.find("dynamic_mask.erode_iterations"), std::string::npos) << range;
   const std::string window = LoadError("", {"tracking.local_ba.window_keyframes=0"});
   EXPECT_NE(window.find("tracking.local_ba.window_keyframes must be >= 1"), std::string::npos) << window;
   const std::string features = LoadError("", {"features.num_features=0"});
   EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
-  EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"),
-            std::string::npos);
+  EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"), std::string::npos);
   const std::string source = LoadError("", {"mask_source=oracle"});
   EXPECT_NE(source.find("mask_source"), std::string::npos) << source;
   EXPECT_NE(source.find("ground_truth"), std::string::npos) << source;
 }
 
 TEST(OdometryConfig, OverridesWinOverTheFile) {
-  const OdometryConfig c = LoadOdometryConfig(
-      ConfigPath("paper.json"), {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
-                                 "camera.source=fr1", "mask_source=ground_truth"});
+  const OdometryConfig c = LoadOdometryConfig(ConfigPath("paper.json"),
+                                              {"dynamic_mask.dilate_kernel_size=9", "dynamic_mask.backward=triplet",
+                                               "camera.source=fr1", "mask_source=ground_truth"});
   EXPECT_EQ(LoadOdometryConfig(ConfigPath("paper.json"), {}).mask_source, MaskSourceKind::kDifference);
   EXPECT_EQ(c.mask_source, MaskSourceKind::kGroundTruth);
   EXPECT_EQ(c.dynamic_mask.dilate_kernel_size, 9);

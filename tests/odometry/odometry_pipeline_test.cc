@@ -89,7 +89,8 @@ TEST(OdometryPipeline, RefillSpendsTheBudgetOffTheMaskAndItsMargin) {
   EXPECT_EQ(record.features_total, record.features_kept + record.features_removed);
   // None of the kept features lies on the mask or within the margin of its edge (column 319).
   const FrameFeatures& kept = processed.stages.features.split.kept;
-  for (const cv::KeyPoint& k : kept.keypoints) EXPECT_GE(cvRound(k.pt.x), 320 + config.features.refill_margin_px) << k.pt;
+  for (const cv::KeyPoint& k : kept.keypoints)
+    EXPECT_GE(cvRound(k.pt.x), 320 + config.features.refill_margin_px) << k.pt;
   EXPECT_EQ(static_cast<int>(kept.size()), record.features_kept);
 }
 
@@ -265,7 +266,8 @@ TEST(OdometryPipeline, ALookAheadForAnotherFrameIsDropped) {
   ahead2.Process(frames[0], &frames[1]);
   plain2.Process(frames[0], nullptr);
   const ProcessedFrame taken = ahead2.Process(frames[1], nullptr);
-  EXPECT_TRUE(taken.record.world_from_camera.matrix() == plain2.Process(frames[1], nullptr).record.world_from_camera.matrix());
+  EXPECT_TRUE(taken.record.world_from_camera.matrix() ==
+              plain2.Process(frames[1], nullptr).record.world_from_camera.matrix());
   EXPECT_EQ(taken.stages.mask.status, MaskStatus::kComputed);
 }
 

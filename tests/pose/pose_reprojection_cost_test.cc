@@ -45,7 +45,10 @@ Scene MakeScene(unsigned seed, int n) {
     s.observed.push_back(pixel + error_px * Eigen::Vector2d(u(rng), u(rng)).normalized());
   }
   const Eigen::Quaterniond quat = PoseQuaternion(s.camera_from_world);
-  s.q[0] = quat.x(); s.q[1] = quat.y(); s.q[2] = quat.z(); s.q[3] = quat.w();
+  s.q[0] = quat.x();
+  s.q[1] = quat.y();
+  s.q[2] = quat.z();
+  s.q[3] = quat.w();
   for (int k = 0; k < 3; ++k) s.t[k] = s.camera_from_world.translation()[k];
   return s;
 }

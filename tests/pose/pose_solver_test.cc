@@ -22,8 +22,7 @@ using test::TranslationError;
 TEST(PoseSolver, PnpAndRefinementRecoverKnownPoseWith30PercentOutliers) {
   for (unsigned seed : {1u, 2u, 3u}) {
     const test::SyntheticView view = MakeView(300, 0.5, 0.3, seed);
-    const PoseEstimate estimate =
-        EstimatePose(view.points_in_world, view.pixels, view.camera, PoseSolverOptions{});
+    const PoseEstimate estimate = EstimatePose(view.points_in_world, view.pixels, view.camera, PoseSolverOptions{});
     ASSERT_TRUE(estimate.ok) << estimate.failure;
     EXPECT_LT(RotationErrorDeg(estimate.camera_from_world, view.camera_from_world), 0.1);
     EXPECT_LT(TranslationError(estimate.camera_from_world, view.camera_from_world), 0.01);
@@ -57,8 +56,7 @@ TEST(PoseSolver, HuberBeatsLeastSquaresWithOutliers) {
   // One round, no outlier rejection: only the loss differs. Outliers 20+ px away pull the
   // plain least-squares solution; the Huber loss bounds their influence.
   const test::SyntheticView view = MakeView(200, 0.5, 0.2, 4);
-  const Pose start = PoseFromAxisAngle({0.01, 0.01, -0.01}, {0.02, 0.0, -0.03}) *
-                     view.camera_from_world;
+  const Pose start = PoseFromAxisAngle({0.01, 0.01, -0.01}, {0.02, 0.0, -0.03}) * view.camera_from_world;
   PoseSolverOptions huber;
   huber.refine_rounds = 1;
   huber.refine_iterations = 50;
@@ -73,16 +71,14 @@ TEST(PoseSolver, HuberBeatsLeastSquaresWithOutliers) {
   const double p_rot = RotationErrorDeg(p.camera_from_world, view.camera_from_world);
   const double h_t = TranslationError(h.camera_from_world, view.camera_from_world);
   const double p_t = TranslationError(p.camera_from_world, view.camera_from_world);
-  std::cout << "Huber: " << h_rot << " deg, " << h_t << " m; least squares: " << p_rot << " deg, "
-            << p_t << " m\n";
+  std::cout << "Huber: " << h_rot << " deg, " << h_t << " m; least squares: " << p_rot << " deg, " << p_t << " m\n";
   EXPECT_LT(h_rot, 0.5 * p_rot);
   EXPECT_LT(h_t, 0.5 * p_t);
 }
 
 TEST(PoseSolver, RefineDropsOutliersBetweenRounds) {
   const test::SyntheticView view = MakeView(200, 0.5, 0.2, 5);
-  const Pose start = PoseFromAxisAngle({0.005, -0.005, 0.0}, {0.01, 0.01, 0.0}) *
-                     view.camera_from_world;
+  const Pose start = PoseFromAxisAngle({0.005, -0.005, 0.0}, {0.01, 0.01, 0.0}) * view.camera_from_world;
   PoseSolverOptions options;
   options.refine_rounds = 3;
   const PoseEstimate e = RefinePose(view.points_in_world, view.pixels, view.camera, start, options);
@@ -99,14 +95,14 @@ TEST(PoseSolver, UseRestrictsTheStartSet) {
   const test::SyntheticView view = MakeView(100, 0.5, 0.0, 6);
   std::vector<uint8_t> use(100, 0);
   for (int i = 0; i < 40; ++i) use[i] = 1;
-  const PoseEstimate e = RefinePose(view.points_in_world, view.pixels, view.camera,
-                                    view.camera_from_world, PoseSolverOptions{}, &use);
+  const PoseEstimate e =
+      RefinePose(view.points_in_world, view.pixels, view.camera, view.camera_from_world, PoseSolverOptions{}, &use);
   ASSERT_TRUE(e.ok);
   EXPECT_EQ(e.num_inliers, 40);
   for (int i = 40; i < 100; ++i) EXPECT_FALSE(e.inliers[i]);
   std::vector<uint8_t> wrong_size(99, 1);
-  EXPECT_THROW(RefinePose(view.points_in_world, view.pixels, view.camera, view.camera_from_world,
-                          PoseSolverOptions{}, &wrong_size),
+  EXPECT_THROW(RefinePose(view.points_in_world, view.pixels, view.camera, view.camera_from_world, PoseSolverOptions{},
+                          &wrong_size),
                InputError);
 }
 
@@ -117,14 +113,12 @@ TEST(PoseSolver, FailuresSayWhy) {
   EXPECT_NE(a.failure.find("too few correspondences"), std::string::npos) << a.failure;
 
   const test::SyntheticView noise = MakeView(100, 0.5, 1.0, 8);  // all outliers
-  const PoseEstimate b = EstimatePose(noise.points_in_world, noise.pixels, noise.camera,
-                                      PoseSolverOptions{});
+  const PoseEstimate b = EstimatePose(noise.points_in_world, noise.pixels, noise.camera, PoseSolverOptions{});
   EXPECT_FALSE(b.ok);
   EXPECT_FALSE(b.failure.empty());
 
   std::vector<Eigen::Vector2d> short_pixels(few.pixels.begin(), few.pixels.end() - 1);
-  EXPECT_THROW(EstimatePose(few.points_in_world, short_pixels, few.camera, PoseSolverOptions{}),
-               InputError);
+  EXPECT_THROW(EstimatePose(few.points_in_world, short_pixels, few.camera, PoseSolverOptions{}), InputError);
 }
 
 TEST(PoseSolver, OptionsCheckNamesTheKey) {
@@ -157,8 +151,7 @@ TEST(PoseSolver, Timing) {
     const auto t1 = std::chrono::steady_clock::now();
     const double c1 = ProcessCpuMs();
     const PoseEstimate refined =
-        RefinePose(view.points_in_world, view.pixels, view.camera, e.camera_from_world, options,
-                   &e.inliers);
+        RefinePose(view.points_in_world, view.pixels, view.camera, e.camera_from_world, options, &e.inliers);
     refine_cpu.push_back(ProcessCpuMs() - c1);
     ASSERT_TRUE(e.ok);
     ASSERT_TRUE(refined.ok);
@@ -168,9 +161,9 @@ TEST(PoseSolver, Timing) {
   std::sort(ms.begin(), ms.end());
   std::sort(cpu.begin(), cpu.end());
   std::sort(refine_cpu.begin(), refine_cpu.end());
-  std::cout << "EstimatePose, 500 correspondences, 30% outliers: median " << ms[ms.size() / 2]
-            << " ms wall, " << cpu[cpu.size() / 2] << " ms CPU (of which RefinePose ~"
-            << refine_cpu[refine_cpu.size() / 2] << " ms CPU)\n";
+  std::cout << "EstimatePose, 500 correspondences, 30% outliers: median " << ms[ms.size() / 2] << " ms wall, "
+            << cpu[cpu.size() / 2] << " ms CPU (of which RefinePose ~" << refine_cpu[refine_cpu.size() / 2]
+            << " ms CPU)\n";
 }
 
 }  // namespace

@@ -29,8 +29,7 @@ void FlipBits(cv::Mat row, int bits, std::mt19937* rng) {
   std::vector<int> positions(256);
   for (int i = 0; i < 256; ++i) positions[i] = i;
   std::shuffle(positions.begin(), positions.end(), *rng);
-  for (int k = 0; k < bits; ++k)
-    row.at<uint8_t>(0, positions[k] / 8) ^= static_cast<uint8_t>(1u << (positions[k] % 8));
+  for (int k = 0; k < bits; ++k) row.at<uint8_t>(0, positions[k] / 8) ^= static_cast<uint8_t>(1u << (positions[k] % 8));
 }
 
 struct World {
@@ -80,17 +79,16 @@ World MakeWorld(int n, int distractors, double noise_px, unsigned seed) {
 TEST(ProjectionMatcher, FindsTheRightCorrespondences) {
   const World w = MakeWorld(800, 400, 1.0, 1);
   // Constant-velocity prediction a little off the truth (a few pixels).
-  const Pose predicted = PoseFromAxisAngle({0.004, -0.003, 0.0}, {0.005, 0.0, 0.0}) *
-                         w.camera_from_world;
-  const std::vector<Match> matches = MatchByProjection(
-      w.points, w.point_descriptors, w.features, w.camera, predicted, MatchOptions{});
+  const Pose predicted = PoseFromAxisAngle({0.004, -0.003, 0.0}, {0.005, 0.0, 0.0}) * w.camera_from_world;
+  const std::vector<Match> matches =
+      MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted, MatchOptions{});
   int right = 0, wrong = 0;
   std::vector<int> seen_features;
   for (const Match& m : matches) {
     (w.feature_of_point[m.point_index] == m.feature_index ? right : wrong)++;
     seen_features.push_back(m.feature_index);
-    EXPECT_EQ(m.distance, DescriptorDistance(w.point_descriptors.ptr(m.point_index),
-                                             w.features.descriptors.ptr(m.feature_index)));
+    EXPECT_EQ(m.distance,
+              DescriptorDistance(w.point_descriptors.ptr(m.point_index), w.features.descriptors.ptr(m.feature_index)));
   }
   std::sort(seen_features.begin(), seen_features.end());
   EXPECT_EQ(std::adjacent_find(seen_features.begin(), seen_features.end()), seen_features.end());
@@ -110,11 +108,10 @@ TEST(ProjectionMatcher, RespectsTheSearchRadius) {
   const Eigen::Vector3d pc = w.camera_from_world * w.points[0];
   Pose predicted = w.camera_from_world;
   predicted.translation().x() += 20.0 * pc.z() / w.camera.fx;
-  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted,
-                                options).empty());
+  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted, options).empty());
   options.search_radius_px = 25.0;
-  const std::vector<Match> far = MatchByProjection(w.points, w.point_descriptors, w.features,
-                                                   w.camera, predicted, options);
+  const std::vector<Match> far =
+      MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted, options);
   ASSERT_EQ(far.size(), 1u) << "feature at " << truth.transpose();
   EXPECT_EQ(far[0].feature_index, 0);
 }
@@ -126,12 +123,11 @@ TEST(ProjectionMatcher, ProjectionJustOutsideTheImageStillMatches) {
   w.features.keypoints[0].pt = cv::Point2f(3.f, 200.f);
   const Pose world_from_camera = w.camera_from_world.inverse();
   w.points[0] = world_from_camera * w.camera.Backproject({-5.0, 200.0}, 2.0);
-  std::vector<Match> m = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera,
-                                           w.camera_from_world, MatchOptions{});
+  std::vector<Match> m =
+      MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world, MatchOptions{});
   ASSERT_EQ(m.size(), 1u);
   w.points[0] = world_from_camera * w.camera.Backproject({-20.0, 200.0}, 2.0);  // 23 px away
-  m = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world,
-                        MatchOptions{});
+  m = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world, MatchOptions{});
   EXPECT_TRUE(m.empty());
 }
 
@@ -144,8 +140,7 @@ TEST(ProjectionMatcher, RatioTestRejectsAmbiguousMatches) {
   f.keypoints.clear();
   f.pixels.clear();
   for (int k = 0; k < 2; ++k) {
-    const Eigen::Vector2d p = w.camera.Project(w.camera_from_world * w.points[0]) +
-                              Eigen::Vector2d(3.0 * k - 1.5, 1.0);
+    const Eigen::Vector2d p = w.camera.Project(w.camera_from_world * w.points[0]) + Eigen::Vector2d(3.0 * k - 1.5, 1.0);
     f.pixels.push_back(p);
     f.keypoints.emplace_back(cv::Point2f(p.x(), p.y()), 31.f);
     cv::Mat d = w.point_descriptors.row(0).clone();
@@ -154,17 +149,15 @@ TEST(ProjectionMatcher, RatioTestRejectsAmbiguousMatches) {
   }
   MatchOptions options;
   options.ratio = 0.9;  // 20 >= 0.9 * 21: ambiguous
-  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, f, w.camera, w.camera_from_world,
-                                options).empty());
+  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, f, w.camera, w.camera_from_world, options).empty());
   options.ratio = 1.0;  // 20 < 21: accepted, the closer descriptor wins
-  const std::vector<Match> m = MatchByProjection(w.points, w.point_descriptors, f, w.camera,
-                                                 w.camera_from_world, options);
+  const std::vector<Match> m =
+      MatchByProjection(w.points, w.point_descriptors, f, w.camera, w.camera_from_world, options);
   ASSERT_EQ(m.size(), 1u);
   EXPECT_EQ(m[0].feature_index, 0);
   EXPECT_EQ(m[0].distance, 20);
   options.max_descriptor_distance = 19;  // too far in descriptor space
-  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, f, w.camera, w.camera_from_world,
-                                options).empty());
+  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, f, w.camera, w.camera_from_world, options).empty());
 }
 
 TEST(ProjectionMatcher, OneFeatureTakesOnePoint) {
@@ -175,8 +168,8 @@ TEST(ProjectionMatcher, OneFeatureTakesOnePoint) {
   std::mt19937 rng(1);
   FlipBits(second, 30, &rng);
   w.point_descriptors.push_back(second);
-  const std::vector<Match> m = MatchByProjection(w.points, w.point_descriptors, w.features,
-                                                 w.camera, w.camera_from_world, MatchOptions{});
+  const std::vector<Match> m =
+      MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world, MatchOptions{});
   ASSERT_EQ(m.size(), 1u);
   EXPECT_EQ(m[0].point_index, 0);
 }
@@ -187,14 +180,12 @@ TEST(ProjectionMatcher, OrientationCheckDropsInconsistentRotations) {
   // angle is off by 90 degrees (wrong associations in a real frame).
   std::vector<float> angles(300);
   for (int i = 0; i < 300; ++i) angles[i] = w.features.keypoints[i].angle - 10.f + (i < 20 ? 90.f : 0.f);
-  const std::vector<Match> checked =
-      MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world,
-                        MatchOptions{}, &angles);
+  const std::vector<Match> checked = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera,
+                                                       w.camera_from_world, MatchOptions{}, &angles);
   MatchOptions unchecked_options;
   unchecked_options.check_orientation = false;
-  const std::vector<Match> unchecked = MatchByProjection(
-      w.points, w.point_descriptors, w.features, w.camera, w.camera_from_world, unchecked_options,
-      &angles);
+  const std::vector<Match> unchecked = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera,
+                                                         w.camera_from_world, unchecked_options, &angles);
   EXPECT_GE(unchecked.size(), 295u);
   EXPECT_EQ(checked.size(), unchecked.size() - 20);
   for (const Match& m : checked) EXPECT_GE(m.point_index, 20);
@@ -203,10 +194,9 @@ TEST(ProjectionMatcher, OrientationCheckDropsInconsistentRotations) {
 TEST(ProjectionMatcher, PointsBehindOrOutsideAreSkippedAndInputChecked) {
   World w = MakeWorld(50, 0, 0.0, 6);
   const Pose turned = PoseFromAxisAngle({0, M_PI, 0}, {0, 0, 0}) * w.camera_from_world;
-  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, turned,
-                                MatchOptions{}).empty());
-  EXPECT_THROW(MatchByProjection(w.points, w.point_descriptors.rowRange(0, 49), w.features,
-                                 w.camera, w.camera_from_world, MatchOptions{}),
+  EXPECT_TRUE(MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, turned, MatchOptions{}).empty());
+  EXPECT_THROW(MatchByProjection(w.points, w.point_descriptors.rowRange(0, 49), w.features, w.camera,
+                                 w.camera_from_world, MatchOptions{}),
                InputError);
   MatchOptions bad;
   bad.ratio = 1.5;
@@ -220,24 +210,21 @@ TEST(ProjectionMatcher, PointsBehindOrOutsideAreSkippedAndInputChecked) {
 
 TEST(ProjectionMatcher, Timing) {
   const World w = MakeWorld(1500, 500, 1.0, 7);
-  const Pose predicted = PoseFromAxisAngle({0.003, 0.0, 0.0}, {0.0, 0.005, 0.0}) *
-                         w.camera_from_world;
+  const Pose predicted = PoseFromAxisAngle({0.003, 0.0, 0.0}, {0.0, 0.005, 0.0}) * w.camera_from_world;
   std::vector<double> ms, cpu;
   size_t matched = 0;
   for (int r = 0; r < 30; ++r) {
     const double c0 = ProcessCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
-    matched = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted,
-                                MatchOptions{}).size();
+    matched = MatchByProjection(w.points, w.point_descriptors, w.features, w.camera, predicted, MatchOptions{}).size();
     const auto t1 = std::chrono::steady_clock::now();
     ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     cpu.push_back(ProcessCpuMs() - c0);
   }
   std::sort(ms.begin(), ms.end());
   std::sort(cpu.begin(), cpu.end());
-  std::cout << "MatchByProjection, 1500 points x 2000 features, radius 15: median "
-            << ms[ms.size() / 2] << " ms wall, " << cpu[cpu.size() / 2] << " ms CPU, " << matched
-            << " matches\n";
+  std::cout << "MatchByProjection, 1500 points x 2000 features, radius 15: median " << ms[ms.size() / 2] << " ms wall, "
+            << cpu[cpu.size() / 2] << " ms CPU, " << matched << " matches\n";
   EXPECT_GE(matched, 1400u);
 }
 

@@ -67,9 +67,7 @@ Pose GroundtruthAt(const std::vector<Stamped>& gt, double stamp) {
   };
   const Pose pa = pose(a), pb = pose(b);
   Pose out = Pose::Identity();
-  out.linear() = Eigen::Quaterniond(pa.linear())
-                     .slerp(s, Eigen::Quaterniond(pb.linear()))
-                     .toRotationMatrix();
+  out.linear() = Eigen::Quaterniond(pa.linear()).slerp(s, Eigen::Quaterniond(pb.linear())).toRotationMatrix();
   out.translation() = (1 - s) * pa.translation() + s * pb.translation();
   return out;
 }
@@ -84,7 +82,10 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
   const std::vector<Stamped> gt = ReadTumList(dir + "groundtruth.txt");
   ASSERT_GE(rgb.size(), 150u);
   Camera camera;  // TUM freiburg1
-  camera.fx = 517.3; camera.fy = 516.5; camera.cx = 318.6; camera.cy = 255.3;
+  camera.fx = 517.3;
+  camera.fy = 516.5;
+  camera.cx = 318.6;
+  camera.cy = 255.3;
   camera.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
 
   FeatureExtractor extractor{FeatureOptions{}};
@@ -96,8 +97,7 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
     const int second = first + 1;  // 1/30 s apart
     auto load = [&](int i, cv::Mat* gray, cv::Mat* metres) {
       *gray = cv::imread(dir + rgb[i].fields[0], cv::IMREAD_GRAYSCALE);
-      const cv::Mat raw =
-          cv::imread(dir + Nearest(depth, rgb[i].stamp).fields[0], cv::IMREAD_UNCHANGED);
+      const cv::Mat raw = cv::imread(dir + Nearest(depth, rgb[i].stamp).fields[0], cv::IMREAD_UNCHANGED);
       ASSERT_EQ(raw.type(), CV_16UC1);
       raw.convertTo(*metres, CV_32F, 1.0 / 5000.0);  // TUM depth scale
     };
@@ -120,8 +120,8 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
     ASSERT_GT(points.size(), 300u);
 
     const double c0 = ProcessCpuMs();
-    const std::vector<Match> matches = MatchByProjection(points, descriptors, b, camera,
-                                                         Pose::Identity(), match_options, &angles);
+    const std::vector<Match> matches =
+        MatchByProjection(points, descriptors, b, camera, Pose::Identity(), match_options, &angles);
     const double c1 = ProcessCpuMs();
     std::vector<Eigen::Vector3d> matched_points;
     std::vector<Eigen::Vector2d> matched_pixels;
@@ -135,27 +135,24 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
     match_ms.push_back(c1 - c0);
     pose_ms.push_back(c2 - c1);
 
-    const Pose b_from_a = GroundtruthAt(gt, rgb[second].stamp).inverse() *
-                          GroundtruthAt(gt, rgb[first].stamp);
+    const Pose b_from_a = GroundtruthAt(gt, rgb[second].stamp).inverse() * GroundtruthAt(gt, rgb[first].stamp);
     const Pose error = estimate.camera_from_world * b_from_a.inverse();
     rot_err.push_back(RotationAngle(error) * 180.0 / M_PI);
     trans_err.push_back((estimate.camera_from_world.translation() - b_from_a.translation()).norm());
-    std::cout << "frames " << first << "-" << second << ": " << points.size() << " map points, "
-              << matches.size() << " matches, " << estimate.num_inliers << " inliers, rms "
-              << estimate.rms_error_px << " px; motion " << RotationAngle(b_from_a) * 180.0 / M_PI
-              << " deg " << b_from_a.translation().norm() << " m (estimated "
+    std::cout << "frames " << first << "-" << second << ": " << points.size() << " map points, " << matches.size()
+              << " matches, " << estimate.num_inliers << " inliers, rms " << estimate.rms_error_px << " px; motion "
+              << RotationAngle(b_from_a) * 180.0 / M_PI << " deg " << b_from_a.translation().norm() << " m (estimated "
               << RotationAngle(estimate.camera_from_world) * 180.0 / M_PI << " deg "
-              << estimate.camera_from_world.translation().norm() << " m); error " << rot_err.back()
-              << " deg " << trans_err.back() << " m\n";
+              << estimate.camera_from_world.translation().norm() << " m); error " << rot_err.back() << " deg "
+              << trans_err.back() << " m\n";
     EXPECT_GT(estimate.num_inliers, 100);
   }
   auto median = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
   };
-  std::cout << "real frames: median CPU matching " << median(match_ms) << " ms, EstimatePose "
-            << median(pose_ms) << " ms; median error " << median(rot_err) << " deg, "
-            << median(trans_err) << " m\n";
+  std::cout << "real frames: median CPU matching " << median(match_ms) << " ms, EstimatePose " << median(pose_ms)
+            << " ms; median error " << median(rot_err) << " deg, " << median(trans_err) << " m\n";
   // Groundtruth (motion capture, 100 Hz) and Kinect depth noise: a correct estimate is within
   // a fraction of a degree and about a centimetre; a wrong one is off by the motion itself.
   EXPECT_LT(median(rot_err), 0.5);

@@ -14,12 +14,15 @@ namespace {
 
 TEST(PoseReprojectionError, ResidualIsProjectionMinusObservation) {
   Camera camera;
-  camera.fx = 517.3; camera.fy = 516.5; camera.cx = 318.6; camera.cy = 255.3;
+  camera.fx = 517.3;
+  camera.fy = 516.5;
+  camera.cx = 318.6;
+  camera.cy = 255.3;
   const Pose camera_from_world = PoseFromAxisAngle({0.2, -0.3, 0.1}, {0.1, 0.2, 0.5});
   const Eigen::Vector3d point(0.3, -0.2, 2.5);
   const Eigen::Vector2d observed(300.0, 200.0);
-  std::unique_ptr<ceres::CostFunction> cost(PoseReprojectionError::Create(
-      observed, point, camera.fx, camera.fy, camera.cx, camera.cy));
+  std::unique_ptr<ceres::CostFunction> cost(
+      PoseReprojectionError::Create(observed, point, camera.fx, camera.fy, camera.cx, camera.cy));
   const Eigen::Quaterniond q(camera_from_world.linear());
   const double q_xyzw[4] = {q.x(), q.y(), q.z(), q.w()};
   const Eigen::Vector3d t = camera_from_world.translation();
@@ -32,8 +35,8 @@ TEST(PoseReprojectionError, ResidualIsProjectionMinusObservation) {
 }
 
 TEST(PoseReprojectionError, GradientMatchesNumericDifferences) {
-  std::unique_ptr<ceres::CostFunction> cost(PoseReprojectionError::Create(
-      {310.0, 250.0}, {0.4, -0.3, 3.0}, 525.0, 525.0, 319.5, 239.5));
+  std::unique_ptr<ceres::CostFunction> cost(
+      PoseReprojectionError::Create({310.0, 250.0}, {0.4, -0.3, 3.0}, 525.0, 525.0, 319.5, 239.5));
   ceres::EigenQuaternionManifold quaternion;
   ceres::EuclideanManifold<3> euclidean;
   const std::vector<const ceres::Manifold*> manifolds = {&quaternion, &euclidean};
@@ -57,8 +60,7 @@ TEST(PoseReprojectionError, GradientMatchesNumericDifferences) {
 }
 
 TEST(ReprojectionError, GradientMatchesNumericDifferences) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      ReprojectionError::Create({310.0, 250.0}, 525.0, 525.0, 319.5, 239.5));
+  std::unique_ptr<ceres::CostFunction> cost(ReprojectionError::Create({310.0, 250.0}, 525.0, 525.0, 319.5, 239.5));
   ceres::EigenQuaternionManifold quaternion;
   ceres::EuclideanManifold<3> euclidean;
   const std::vector<const ceres::Manifold*> manifolds = {&quaternion, &euclidean, &euclidean};

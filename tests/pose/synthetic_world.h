@@ -12,10 +12,10 @@
 namespace dynvo::test {
 
 struct SyntheticView {
-  Camera camera;                            // 640x480, f 525
-  Pose camera_from_world;                   // the truth
+  Camera camera;           // 640x480, f 525
+  Pose camera_from_world;  // the truth
   std::vector<Eigen::Vector3d> points_in_world;
-  std::vector<Eigen::Vector2d> pixels;      // noisy projections, outliers replaced
+  std::vector<Eigen::Vector2d> pixels;  // noisy projections, outliers replaced
   std::vector<uint8_t> is_outlier;
 };
 
@@ -24,12 +24,10 @@ struct SyntheticView {
 // least 20 px from the truth.
 inline SyntheticView MakeView(int n, double noise_px, double outliers, unsigned seed) {
   SyntheticView view;
-  view.camera_from_world =
-      PoseFromAxisAngle({0.05, -0.12, 0.03}, {0.15, -0.05, 0.3});
+  view.camera_from_world = PoseFromAxisAngle({0.05, -0.12, 0.03}, {0.15, -0.05, 0.3});
   const Pose world_from_camera = view.camera_from_world.inverse();
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(10.0, 629.0), v(10.0, 469.0), depth(1.0, 6.0),
-      unit(0.0, 1.0);
+  std::uniform_real_distribution<double> u(10.0, 629.0), v(10.0, 469.0), depth(1.0, 6.0), unit(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, noise_px);
   const int num_outliers = static_cast<int>(outliers * n + 0.5);
   for (int i = 0; i < n; ++i) {
@@ -50,11 +48,7 @@ inline SyntheticView MakeView(int n, double noise_px, double outliers, unsigned 
 }
 
 // Rotation angle between two poses in degrees and translation difference in metres.
-inline double RotationErrorDeg(const Pose& a, const Pose& b) {
-  return RotationAngle(a.inverse() * b) * 180.0 / M_PI;
-}
-inline double TranslationError(const Pose& a, const Pose& b) {
-  return (a.translation() - b.translation()).norm();
-}
+inline double RotationErrorDeg(const Pose& a, const Pose& b) { return RotationAngle(a.inverse() * b) * 180.0 / M_PI; }
+inline double TranslationError(const Pose& a, const Pose& b) { return (a.translation() - b.translation()).norm(); }
 
 }  // namespace dynvo::test

@@ -14,8 +14,7 @@ ToolOutcome RunTool(const TempDir& dir, const std::string& program, const std::s
   if (!bin || !*bin) ADD_FAILURE() << "DYNVO_BIN_DIR is not set (ctest sets it)";
   const std::string exe = std::string(bin ? bin : ".") + "/" + program;
   const auto out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
-  const std::string command =
-      "'" + exe + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string command = "'" + exe + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   ToolOutcome o;
   o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -16,9 +16,9 @@ bool RunningInCi();
 
 // Use at the top of a test that needs ../shared: binds `var` to its path, or skips the test
 // (fails under CI=true) when it is missing.
-#define DYNVO_REQUIRE_SHARED(var)                                                   \
-  const std::string var = ::dynvo::test::SharedDir();                               \
-  if (var.empty()) {                                                                \
+#define DYNVO_REQUIRE_SHARED(var)                                                     \
+  const std::string var = ::dynvo::test::SharedDir();                                 \
+  if (var.empty()) {                                                                  \
     if (::dynvo::test::RunningInCi()) FAIL() << "../shared is missing under CI=true"; \
-    GTEST_SKIP() << "../shared not found: test needs the shared data folder";       \
+    GTEST_SKIP() << "../shared not found: test needs the shared data folder";         \
   }

@@ -88,13 +88,15 @@ TEST(ArticulatedCutout, LimbsMoveRelativeToTheTorsoAndTheFeetStayOnTheFloor) {
     masks[k] = Silhouette(renderer, quads);
     torsos[k] = Silhouette(renderer, {quads[kTorso]});
     double lowest = 1e9;
-    for (const TexturedQuad& q : quads) lowest = std::min({lowest, (q.origin + q.edge_v).z(), (q.origin + q.edge_u + q.edge_v).z()});
+    for (const TexturedQuad& q : quads)
+      lowest = std::min({lowest, (q.origin + q.edge_v).z(), (q.origin + q.edge_u + q.edge_v).z()});
     EXPECT_NEAR(lowest, 0.015 * std::cos(k * kPi), 1e-9) << "a foot on the floor, then the bob";
   }
   // Align the second frame by the torso's shift: the torso matches, the body does not (a
   // rigid warp cannot explain the change).
   const cv::Moments a = cv::moments(torsos[0], true), b = cv::moments(torsos[1], true);
-  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, a.m10 / a.m00 - b.m10 / b.m00, 0, 1, a.m01 / a.m00 - b.m01 / b.m00);
+  const cv::Mat shift =
+      (cv::Mat_<double>(2, 3) << 1, 0, a.m10 / a.m00 - b.m10 / b.m00, 0, 1, a.m01 / a.m00 - b.m01 / b.m00);
   cv::Mat torso_aligned, body_aligned;
   cv::warpAffine(torsos[1], torso_aligned, shift, torsos[1].size(), cv::INTER_NEAREST);
   cv::warpAffine(masks[1], body_aligned, shift, masks[1].size(), cv::INTER_NEAREST);
@@ -105,8 +107,8 @@ TEST(ArticulatedCutout, LimbsMoveRelativeToTheTorsoAndTheFeetStayOnTheFloor) {
 TEST(ArticulatedCutout, TheBodyIsRoundedNotFlat) {
   const ArticulatedCutout doll = MakeArticulatedCutout(MakeSyntheticPersonCutout(5), 1.7);
   const Renderer renderer = TestRenderer();
-  const RenderResult r = renderer.Render(PoseArticulatedCutout(doll, BodyPose(), Pose::Identity(), kInPlane, 1),
-                                         CameraFromDoll());
+  const RenderResult r =
+      renderer.Render(PoseArticulatedCutout(doll, BodyPose(), Pose::Identity(), kInPlane, 1), CameraFromDoll());
   // Along the row through the chest: nearest in the middle, farther toward the outline.
   const int row = cvRound(239.5 - 500 * (1.25 - 0.85) / 3.0);  // doll height 1.25 m
   float middle = 0, edge = 0;

@@ -57,7 +57,10 @@ TEST(Renderer, KnownPointLandsOnPredictedPixelWithPredictedDepth) {
 
 TEST(Renderer, DistortedCameraAgreesWithOpenCvProjection) {
   Camera camera;  // TUM fr1: strong radial distortion
-  camera.fx = 517.3; camera.fy = 516.5; camera.cx = 318.6; camera.cy = 255.3;
+  camera.fx = 517.3;
+  camera.fy = 516.5;
+  camera.cx = 318.6;
+  camera.cy = 255.3;
   camera.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
   const Renderer renderer(camera);
   // A fronto-parallel square at 1.5 m near the image corner, where distortion is largest.
@@ -68,8 +71,8 @@ TEST(Renderer, DistortedCameraAgreesWithOpenCvProjection) {
   quad.texture = GradientTexture(64, 0.2 / 64);
   quad.object_id = 1;
   const RenderResult r = renderer.Render({quad}, Pose::Identity());
-  std::vector<cv::Point3d> corners = {{-0.75, -0.55, 1.5}, {-0.55, -0.55, 1.5}, {-0.55, -0.35, 1.5},
-                                      {-0.75, -0.35, 1.5}, {-0.65, -0.45, 1.5}};
+  std::vector<cv::Point3d> corners = {
+      {-0.75, -0.55, 1.5}, {-0.55, -0.55, 1.5}, {-0.55, -0.35, 1.5}, {-0.75, -0.35, 1.5}, {-0.65, -0.45, 1.5}};
   std::vector<cv::Point2d> pixels;
   cv::projectPoints(corners, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(), pixels);
   // The centre is covered at exactly 1.5 m; 2 pixels outside each corner (away from the
@@ -105,7 +108,8 @@ TEST(Renderer, NearerQuadWinsWhateverTheOrder) {
   near_quad.edge_u = {0.4, 0, 0};
   near_quad.edge_v = {0, 0.4, 0};
   near_quad.object_id = 7;
-  for (const auto& quads : {std::vector<TexturedQuad>{far_quad, near_quad}, std::vector<TexturedQuad>{near_quad, far_quad}}) {
+  for (const auto& quads :
+       {std::vector<TexturedQuad>{far_quad, near_quad}, std::vector<TexturedQuad>{near_quad, far_quad}}) {
     const RenderResult r = renderer.Render(quads, Pose::Identity());
     EXPECT_NEAR(r.depth.at<float>(60, 79), 1.0, 1e-5);
     EXPECT_EQ(r.object_id.at<std::uint16_t>(60, 79), 7);

@@ -103,7 +103,8 @@ TEST(MovingObject, PeopleArePersonSizedAndWalkAtTheirSpeed) {
   ASSERT_EQ(people.size(), 1u);
   double top = 0;
   for (const TexturedQuad& q : PersonQuadsAt(people[0], 0.0))
-    for (const Eigen::Vector3d& c : {q.origin, Eigen::Vector3d(q.origin + q.edge_u), Eigen::Vector3d(q.origin + q.edge_v)})
+    for (const Eigen::Vector3d& c :
+         {q.origin, Eigen::Vector3d(q.origin + q.edge_u), Eigen::Vector3d(q.origin + q.edge_v)})
       top = std::max(top, c.z());
   EXPECT_NEAR(top, 1.72, 0.06);
   Eigen::Vector2d a, b;

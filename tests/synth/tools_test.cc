@@ -33,8 +33,8 @@ std::string ReadAll(const fs::path& path) {
 // Runs bin/<program> with arguments; stdout and stderr captured.
 RunResult RunTool(const test::TempDir& dir, const std::string& program, const std::string& args) {
   const fs::path out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
-  const std::string command = std::string(DYNVO_SYNTH_BIN_DIR) + "/" + program + " " + args + " >" + out.string() +
-                              " 2>" + err.string();
+  const std::string command =
+      std::string(DYNVO_SYNTH_BIN_DIR) + "/" + program + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -89,8 +89,9 @@ TEST(Tools, BadArgumentsGiveOneLineErrors) {
   ExpectOneLineError(RunTool(dir, "dynvo-synth", "--scenario jogging --out " + out), "dynvo-synth", "--scenario");
   ExpectOneLineError(RunTool(dir, "dynvo-synth", "--frames 0 --out " + out), "dynvo-synth", "synth.frames");
   ExpectOneLineError(RunTool(dir, "dynvo-synth", "--frames"), "dynvo-synth", "frames");
-  ExpectOneLineError(RunTool(dir, "dynvo-insert-people", "--dataset " + (dir.path() / "none").string() + " --out " + out),
-                     "dynvo-insert-people", "none");
+  ExpectOneLineError(
+      RunTool(dir, "dynvo-insert-people", "--dataset " + (dir.path() / "none").string() + " --out " + out),
+      "dynvo-insert-people", "none");
   ExpectOneLineError(RunTool(dir, "dynvo-insert-people", "--dataset d --person p.png --out " + out),
                      "dynvo-insert-people", "--person-mask");
   ExpectOneLineError(RunTool(dir, "dynvo-insert-people",

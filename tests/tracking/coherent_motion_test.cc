@@ -20,8 +20,8 @@ struct Inliers {
   std::vector<uint8_t> on_person;
 };
 
-Inliers MakeInliers(const Eigen::Vector2d& person_shift_px, const Eigen::Vector2d& frame_bias_px,
-                    double noise_px, unsigned seed, int near_points = 0) {
+Inliers MakeInliers(const Eigen::Vector2d& person_shift_px, const Eigen::Vector2d& frame_bias_px, double noise_px,
+                    unsigned seed, int near_points = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, noise_px);
@@ -117,9 +117,9 @@ TEST(CoherentMotion, NeighboursAtAnotherDepthDoNotCount) {
   no_depth.max_depth_ratio = 10.0;  // any depth is a neighbour
   const Counts with_depth = Count(in, FlagCoherentMotion(in.pixels, in.residuals, in.depths, Enabled()));
   const Counts without = Count(in, FlagCoherentMotion(in.pixels, in.residuals, in.depths, no_depth));
-  std::cout << "[ coherent ] person flagged " << with_depth.person_flagged << " of "
-            << with_depth.person << " with the depth rule, " << without.person_flagged
-            << " without; static " << with_depth.static_flagged << " and " << without.static_flagged << "\n";
+  std::cout << "[ coherent ] person flagged " << with_depth.person_flagged << " of " << with_depth.person
+            << " with the depth rule, " << without.person_flagged << " without; static " << with_depth.static_flagged
+            << " and " << without.static_flagged << "\n";
   // Measured: 28 and 9 of 30; static 3 and 4.
   EXPECT_GE(with_depth.person_flagged, 24);
   EXPECT_LT(without.person_flagged, with_depth.person_flagged / 2);
@@ -130,9 +130,7 @@ TEST(CoherentMotion, NeighboursAtAnotherDepthDoNotCount) {
 TEST(CoherentMotion, ASmallDisplacementOrAFewPointsAreNotEnough) {
   // 0.3 px shared by 30 points, diluted by ~10 background neighbours: z ~ 2 at 0.75 px noise.
   const Inliers small = MakeInliers({0.3, 0.0}, {0.0, 0.0}, 0.75, 3);
-  EXPECT_EQ(Count(small, FlagCoherentMotion(small.pixels, small.residuals, small.depths, Enabled()))
-                .person_flagged,
-            0);
+  EXPECT_EQ(Count(small, FlagCoherentMotion(small.pixels, small.residuals, small.depths, Enabled())).person_flagged, 0);
   // Three points far off, alone: fewer than min_neighbours (5).
   Inliers few;
   for (int i = 0; i < 200; ++i) {
@@ -160,10 +158,10 @@ TEST(CoherentMotion, RejectsBadInput) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("tracking.coherent_motion.min_neighbours"), std::string::npos);
   }
-  for (auto set : {+[](CoherentMotionOptions& o) { o.radius_px = 0.0; },
-                   +[](CoherentMotionOptions& o) { o.max_depth_ratio = 0.0; },
-                   +[](CoherentMotionOptions& o) { o.min_z = -1.0; },
-                   +[](CoherentMotionOptions& o) { o.min_sigma_px = 0.0; }}) {
+  for (auto set :
+       {+[](CoherentMotionOptions& o) { o.radius_px = 0.0; },
+        +[](CoherentMotionOptions& o) { o.max_depth_ratio = 0.0; }, +[](CoherentMotionOptions& o) { o.min_z = -1.0; },
+        +[](CoherentMotionOptions& o) { o.min_sigma_px = 0.0; }}) {
     CoherentMotionOptions o = Enabled();
     set(o);
     EXPECT_THROW(o.Check(), InputError);

@@ -59,9 +59,7 @@ struct Run {
   std::vector<Pose> truth;  // world_from_camera relative to the first frame
 };
 
-test::SyntheticWorld RoomWorld() {
-  return test::MakeWorld(1000, {-3.0, -2.0, 2.5}, {3.0, 2.0, 6.0}, 42);
-}
+test::SyntheticWorld RoomWorld() { return test::MakeWorld(1000, {-3.0, -2.0, 2.5}, {3.0, 2.0, 6.0}, 42); }
 
 TEST(TrackerOptions, CheckNamesTheKey) {
   TrackerOptions options;
@@ -157,9 +155,8 @@ TEST(FrameTracker, RecoversSyntheticPath) {
   }
   const double t_rmse = std::sqrt(t_sq / t_err.size()), r_rmse = std::sqrt(r_sq / r_err.size());
   std::cout << "[ synthetic ] per-frame RPE rmse " << t_rmse * 1000 << " mm, " << r_rmse
-            << " deg; final position error " << final_error * 1000 << " mm; keyframes "
-            << keyframes << "; median match+pose " << Median(track_ms) << " ms, local BA "
-            << Median(ba_ms) << " ms\n";
+            << " deg; final position error " << final_error * 1000 << " mm; keyframes " << keyframes
+            << "; median match+pose " << Median(track_ms) << " ms, local BA " << Median(ba_ms) << " ms\n";
   // 0.5 px noise on ~500 features at 2.5-6 m: a point's pixel noise is ~4 mm at 4 m, and with
   // a 60 degree field of view rotation and translation trade off, so a pose from one frame is
   // good to about a millimetre (measured: 1.6 mm, 0.022 degrees per frame; 1.2 mm after 200).
@@ -193,8 +190,7 @@ TEST(FrameTracker, FrameWithoutFeaturesIsLostThenRecovers) {
       est.push_back(r.world_from_camera);
       continue;
     }
-    const TrackingResult r =
-        tracker.Track(test::Render(world, SmoothPath(i).inverse(), render, rng), stamp);
+    const TrackingResult r = tracker.Track(test::Render(world, SmoothPath(i).inverse(), render, rng), stamp);
     if (i > 0) {
       ASSERT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
     }
@@ -218,8 +214,7 @@ TEST(FrameTracker, UnpredictedTurnFallsBackToEpnp) {
   int epnp_frames = 0;
   for (int i = 0; i < 50; ++i) {
     const Pose truth = truth_at(i);
-    const TrackingResult r =
-        tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
+    const TrackingResult r = tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
     const auto [t, rot] = steps.Next(r.world_from_camera, truth);
     if (i > 0) {
       ASSERT_EQ(r.state, TrackingState::kTracking) << "frame " << i << ": " << r.note;
@@ -273,9 +268,9 @@ TEST(FrameTracker, RematchAroundTheRefinedPoseRecoversMissedMatches) {
   ASSERT_EQ(b.result.state, TrackingState::kTracking) << b.result.note;
   EXPECT_FALSE(a.result.used_epnp);
   EXPECT_FALSE(b.result.used_epnp);
-  std::cout << "[ rematch ] inliers " << a.result.num_inliers << " -> " << b.result.num_inliers
-            << "; frame error " << a.t_error * 1000 << " mm " << a.r_error << " deg -> "
-            << b.t_error * 1000 << " mm " << b.r_error << " deg\n";
+  std::cout << "[ rematch ] inliers " << a.result.num_inliers << " -> " << b.result.num_inliers << "; frame error "
+            << a.t_error * 1000 << " mm " << a.r_error << " deg -> " << b.t_error * 1000 << " mm " << b.r_error
+            << " deg\n";
   // Measured: 130 -> 487 inliers, 0.055 -> 0.007 degrees; the bars leave margin on both.
   EXPECT_GT(b.result.num_inliers, a.result.num_inliers + 100);
   EXPECT_LT(b.t_error, 0.005);
@@ -362,10 +357,9 @@ TEST(FrameTracker, ReadmitsMaskedFeaturesOnlyWhereTheMapExplainsThem) {
   const MaskedBoxRun moving = TrackWithMaskedBox(0.02, readmit);
   const MaskedBoxRun moving_off = TrackWithMaskedBox(0.02, off);
   std::cout << "[ readmit ] still box " << still.readmitted << " of " << still.masked
-            << " masked features readmitted; moving box " << moving.readmitted << " of "
-            << moving.masked << "; max frame error (mm) still " << still.max_t_error * 1000
-            << " (off " << still_off.max_t_error * 1000 << "), moving "
-            << moving.max_t_error * 1000 << " (off " << moving_off.max_t_error * 1000 << ")\n";
+            << " masked features readmitted; moving box " << moving.readmitted << " of " << moving.masked
+            << "; max frame error (mm) still " << still.max_t_error * 1000 << " (off " << still_off.max_t_error * 1000
+            << "), moving " << moving.max_t_error * 1000 << " (off " << moving_off.max_t_error * 1000 << ")\n";
   ASSERT_GT(still.masked, 1000);
   // Points of the still box were mapped in frames 0-9; matching misses a few (measured: 98%
   // come back).
@@ -395,9 +389,8 @@ struct WallRun {
   int rejected = 0;           // new_points_rejected, summed
   int coherent_rejected = 0;  // coherent_motion_rejected, summed
 };
-WallRun TrackWallWithBox(const test::SyntheticWorld& box, const std::function<double(int)>& box_shift_m,
-                         int box_from, int frames, int max_features, unsigned rng_seed,
-                         const TrackerOptions& options) {
+WallRun TrackWallWithBox(const test::SyntheticWorld& box, const std::function<double(int)>& box_shift_m, int box_from,
+                         int frames, int max_features, unsigned rng_seed, const TrackerOptions& options) {
   const test::SyntheticWorld wall = test::MakeWorld(1500, {-4.0, -3.0, 3.9}, {4.0, 3.0, 4.1}, 21);
   std::mt19937 rng(rng_seed);
   test::RenderOptions render;
@@ -425,7 +418,8 @@ WallRun TrackWallWithBox(const test::SyntheticWorld& box, const std::function<do
 // From frame 15 on, a box of 80 points at 1.6-1.9 m moving `box_speed_m` per frame; 60 frames.
 WallRun TrackWallWithUnmaskedBox(double box_speed_m, const TrackerOptions& options) {
   const test::SyntheticWorld box = test::MakeWorld(80, {-0.8, -0.6, 1.6}, {0.2, 0.6, 1.9}, 22);
-  return TrackWallWithBox(box, [&](int i) { return box_speed_m * i; }, 15, 60, 500, 9, options);
+  return TrackWallWithBox(
+      box, [&](int i) { return box_speed_m * i; }, 15, 60, 500, 9, options);
 }
 
 double Rms(const std::vector<double>& v) {
@@ -445,9 +439,9 @@ TEST(FrameTracker, NewPointsOnAnUnmaskedMovingBoxDoNotPullThePoseOnceConfirmed) 
   std::cout << "[ confirm ] moving box: per-frame RMS " << Rms(with.t_errors) * 1000 << " mm (off "
             << Rms(without.t_errors) * 1000 << "), max "
             << *std::max_element(with.t_errors.begin(), with.t_errors.end()) * 1000 << " (off "
-            << *std::max_element(without.t_errors.begin(), without.t_errors.end()) * 1000
-            << "), rejected " << with.rejected << "; still box RMS " << Rms(still.t_errors) * 1000
-            << " (off " << Rms(still_off.t_errors) * 1000 << "), rejected " << still.rejected << "\n";
+            << *std::max_element(without.t_errors.begin(), without.t_errors.end()) * 1000 << "), rejected "
+            << with.rejected << "; still box RMS " << Rms(still.t_errors) * 1000 << " (off "
+            << Rms(still_off.t_errors) * 1000 << "), rejected " << still.rejected << "\n";
   EXPECT_EQ(without.rejected, 0);
   EXPECT_GT(with.rejected, 0);
   // Measured: per-frame RMS 3.2 mm with confirmation against 41 mm without (the box's fresh
@@ -463,9 +457,7 @@ TEST(FrameTracker, NewPointsOnAnUnmaskedMovingBoxDoNotPullThePoseOnceConfirmed) 
 // frames.
 WallRun TrackWallWithSwayingBox(double sway_m, const TrackerOptions& options) {
   const test::SyntheticWorld box = test::MakeWorld(60, {-0.3, -0.6, 3.4}, {0.3, 0.6, 3.6}, 23);
-  const auto sway = [&](int i) {
-    return sway_m * std::sin(2.0 * 3.14159265358979323846 * (i / kFrameRate) / 3.3);
-  };
+  const auto sway = [&](int i) { return sway_m * std::sin(2.0 * 3.14159265358979323846 * (i / kFrameRate) / 3.3); };
   return TrackWallWithBox(box, sway, 0, 120, 600, 10, options);
 }
 
@@ -479,16 +471,15 @@ TEST(FrameTracker, CoherentMotionKeepsASwayingBoxOutOfThePose) {
   const WallRun without = TrackWallWithSwayingBox(0.02, off);
   const WallRun still = TrackWallWithSwayingBox(0.0, on);
   const WallRun still_off = TrackWallWithSwayingBox(0.0, off);
-  std::cout << "[ coherent ] swaying box: per-frame RMS " << Rms(with.t_errors) * 1000
-            << " mm (off " << Rms(without.t_errors) * 1000 << "), rejected " << with.coherent_rejected
-            << "; still box RMS " << Rms(still.t_errors) * 1000 << " (off "
-            << Rms(still_off.t_errors) * 1000 << "), rejected " << still.coherent_rejected << "\n";
+  std::cout << "[ coherent ] swaying box: per-frame RMS " << Rms(with.t_errors) * 1000 << " mm (off "
+            << Rms(without.t_errors) * 1000 << "), rejected " << with.coherent_rejected << "; still box RMS "
+            << Rms(still.t_errors) * 1000 << " (off " << Rms(still_off.t_errors) * 1000 << "), rejected "
+            << still.coherent_rejected << "\n";
   EXPECT_GT(with.coherent_rejected, 0);
   EXPECT_EQ(without.coherent_rejected, 0);
   // The sway costs 1.1 mm of per-frame RMS against the same box standing still (measured: 3.83
   // against 2.71 mm); leaving its points out takes back 62% of that (3.13 mm).
-  EXPECT_LT(Rms(with.t_errors),
-            Rms(without.t_errors) - 0.4 * (Rms(without.t_errors) - Rms(still_off.t_errors)));
+  EXPECT_LT(Rms(with.t_errors), Rms(without.t_errors) - 0.4 * (Rms(without.t_errors) - Rms(still_off.t_errors)));
   // Where nothing moves, next to nothing is left out and the error stays.
   EXPECT_LT(still.coherent_rejected, 10);  // measured: 0
   EXPECT_LT(Rms(still.t_errors), 1.05 * Rms(still_off.t_errors));
@@ -509,8 +500,7 @@ TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
   std::vector<double> t_err;
   for (int i = 0; i < 80; ++i) {
     const Pose truth = truth_at(i);
-    const TrackingResult r =
-        tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
+    const TrackingResult r = tracker.Track(test::Render(world, truth.inverse(), render, rng), i / kFrameRate);
     if (i == 30 || i == 31) {
       EXPECT_EQ(r.state, TrackingState::kLost) << i;
       EXPECT_FALSE(r.note.empty());
@@ -540,15 +530,13 @@ TEST(FrameTracker, MapStaysBoundedOver1000Frames) {
   options.map.max_points = 400;
   FrameTracker tracker(world.camera, options);
   auto path = [](int i) {
-    return PoseFromAxisAngle({0.0, 0.03 * std::sin(0.02 * i), 0.0},
-                             {0.01 * i, 0.05 * std::sin(0.03 * i), 0.0});
+    return PoseFromAxisAngle({0.0, 0.03 * std::sin(0.02 * i), 0.0}, {0.01 * i, 0.05 * std::sin(0.03 * i), 0.0});
   };
   int max_keyframes = 0, max_points = 0, tracked = 0;
   std::vector<double> track_ms, ba_ms;
   double final_error = 0;
   for (int i = 0; i < 1000; ++i) {
-    const TrackingResult r =
-        tracker.Track(test::Render(world, path(i).inverse(), render, rng), i / kFrameRate);
+    const TrackingResult r = tracker.Track(test::Render(world, path(i).inverse(), render, rng), i / kFrameRate);
     max_keyframes = std::max(max_keyframes, r.map_keyframes);
     max_points = std::max(max_points, r.map_points);
     tracked += r.state == TrackingState::kTracking ? 1 : 0;
@@ -558,16 +546,15 @@ TEST(FrameTracker, MapStaysBoundedOver1000Frames) {
       track_ms.push_back(r.match_ms + r.pose_ms);
     final_error = (r.world_from_camera.translation() - (path(0).inverse() * path(i)).translation()).norm();
   }
-  std::cout << "[ 1000 frames ] max keyframes " << max_keyframes << ", max points " << max_points
-            << ", tracked " << tracked << ", final position error " << final_error * 1000
-            << " mm over 10 m; median match+pose " << Median(track_ms) << " ms, local BA "
-            << Median(ba_ms) << " ms (" << ba_ms.size() << " keyframes)\n";
-  EXPECT_EQ(max_keyframes, 8);    // the bound is reached and holds
+  std::cout << "[ 1000 frames ] max keyframes " << max_keyframes << ", max points " << max_points << ", tracked "
+            << tracked << ", final position error " << final_error * 1000 << " mm over 10 m; median match+pose "
+            << Median(track_ms) << " ms, local BA " << Median(ba_ms) << " ms (" << ba_ms.size() << " keyframes)\n";
+  EXPECT_EQ(max_keyframes, 8);  // the bound is reached and holds
   EXPECT_EQ(max_points, 400);
   EXPECT_EQ(tracker.map().num_keyframes(), 8u);
   EXPECT_LE(tracker.map().num_points(), 400u);
   EXPECT_EQ(tracked, 999);
-  EXPECT_LT(final_error, 0.2);    // 2 % of the distance travelled
+  EXPECT_LT(final_error, 0.2);  // 2 % of the distance travelled
 }
 
 // Keyframes taken while the camera turns faster than max_ba_depth_rotation_deg_s keep their

@@ -95,14 +95,12 @@ TEST_F(ConfirmNewPointsTest, KeepsTheEstimateWhenTheNewPointsAgree) {
   EXPECT_TRUE(checked.estimate.camera_from_world.isApprox(full_.camera_from_world));
   EXPECT_EQ(checked.estimate.inliers, full_.inliers);
   EXPECT_EQ(checked.rejected, 0);
-  for (size_t i = 0; i < 400; ++i)
-    EXPECT_EQ(checked.confirmed[i], unconfirmed_[i] && full_.inliers[i]) << i;
+  for (size_t i = 0; i < 400; ++i) EXPECT_EQ(checked.confirmed[i], unconfirmed_[i] && full_.inliers[i]) << i;
 }
 
 TEST_F(ConfirmNewPointsTest, ALargerShiftBarTrustsTheEstimate) {
   Build(9.0);
-  const NewPointConfirmation checked =
-      ConfirmNewPoints(points_, pixels_, unconfirmed_, full_, camera_, options_, 1.0);
+  const NewPointConfirmation checked = ConfirmNewPoints(points_, pixels_, unconfirmed_, full_, camera_, options_, 1.0);
   EXPECT_TRUE(checked.estimate.camera_from_world.isApprox(full_.camera_from_world));
   EXPECT_EQ(checked.rejected, 0);
 }
@@ -111,8 +109,7 @@ TEST_F(ConfirmNewPointsTest, TooFewTrustedPointsLeaveTheEstimateStanding) {
   Build(0.0);
   std::vector<uint8_t> all_new(unconfirmed_.size(), 1);
   for (size_t i = 0; i < 5; ++i) all_new[i] = 0;  // fewer than pose.min_inliers trusted
-  const NewPointConfirmation checked =
-      ConfirmNewPoints(points_, pixels_, all_new, full_, camera_, options_, 0.003);
+  const NewPointConfirmation checked = ConfirmNewPoints(points_, pixels_, all_new, full_, camera_, options_, 0.003);
   EXPECT_TRUE(checked.estimate.camera_from_world.isApprox(full_.camera_from_world));
   EXPECT_EQ(checked.shift_m, 0.0);
   for (size_t i = 5; i < 400; ++i) EXPECT_EQ(checked.confirmed[i], full_.inliers[i]) << i;
@@ -121,12 +118,10 @@ TEST_F(ConfirmNewPointsTest, TooFewTrustedPointsLeaveTheEstimateStanding) {
 TEST_F(ConfirmNewPointsTest, WithNothingUnconfirmedReturnsTheEstimateAndChecksSizes) {
   Build(0.0);
   const std::vector<uint8_t> none(unconfirmed_.size(), 0);
-  const NewPointConfirmation checked =
-      ConfirmNewPoints(points_, pixels_, none, full_, camera_, options_, 0.003);
+  const NewPointConfirmation checked = ConfirmNewPoints(points_, pixels_, none, full_, camera_, options_, 0.003);
   EXPECT_TRUE(checked.estimate.camera_from_world.isApprox(full_.camera_from_world));
   EXPECT_EQ(checked.confirmed, none);
-  EXPECT_THROW(ConfirmNewPoints(points_, pixels_, std::vector<uint8_t>(3, 1), full_, camera_,
-                                options_, 0.003),
+  EXPECT_THROW(ConfirmNewPoints(points_, pixels_, std::vector<uint8_t>(3, 1), full_, camera_, options_, 0.003),
                InputError);
 }
 

@@ -2,16 +2,14 @@
 
 namespace dynvo::test {
 
-SyntheticWorld MakeWorld(int num_points, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                         unsigned seed) {
+SyntheticWorld MakeWorld(int num_points, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::uniform_int_distribution<int> byte(0, 255);
   SyntheticWorld world;
   world.descriptors.create(num_points, 32, CV_8UC1);
   for (int i = 0; i < num_points; ++i) {
-    world.points.emplace_back(lo.x() + (hi.x() - lo.x()) * unit(rng),
-                              lo.y() + (hi.y() - lo.y()) * unit(rng),
+    world.points.emplace_back(lo.x() + (hi.x() - lo.x()) * unit(rng), lo.y() + (hi.y() - lo.y()) * unit(rng),
                               lo.z() + (hi.z() - lo.z()) * unit(rng));
     for (int b = 0; b < 32; ++b) world.descriptors.at<uint8_t>(i, b) = static_cast<uint8_t>(byte(rng));
     world.angles_deg.push_back(static_cast<float>(360.0 * unit(rng)));
@@ -32,8 +30,8 @@ FrameFeatures Allocate(size_t n) {
 
 }  // namespace
 
-FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world,
-                     const RenderOptions& options, std::mt19937& rng) {
+FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world, const RenderOptions& options,
+                     std::mt19937& rng) {
   std::normal_distribution<double> noise(0.0, options.pixel_noise);
   std::uniform_int_distribution<int> bit(0, 255);
   std::vector<int> visible;
@@ -58,8 +56,8 @@ FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world,
       const int which = bit(rng);
       f.descriptors.at<uint8_t>(static_cast<int>(k), which / 8) ^= static_cast<uint8_t>(1u << (which % 8));
     }
-    f.keypoints.emplace_back(cv::Point2f(static_cast<float>(pixels[k].x()), static_cast<float>(pixels[k].y())),
-                             31.0f, world.angles_deg[static_cast<size_t>(i)], 1.0f, 0);
+    f.keypoints.emplace_back(cv::Point2f(static_cast<float>(pixels[k].x()), static_cast<float>(pixels[k].y())), 31.0f,
+                             world.angles_deg[static_cast<size_t>(i)], 1.0f, 0);
     f.pixels.push_back(pixels[k]);
     f.depths.push_back(depths[k]);
     f.points_in_camera.push_back(depths[k] > 0 ? world.camera.Backproject(pixels[k], depths[k])

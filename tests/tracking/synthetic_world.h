@@ -16,15 +16,14 @@
 namespace dynvo::test {
 
 struct SyntheticWorld {
-  Camera camera;                          // default 640 x 480, f = 525
-  std::vector<Eigen::Vector3d> points;    // world, metres
-  cv::Mat descriptors;                    // one random 32-byte row per point
-  std::vector<float> angles_deg;          // ORB orientation per point
+  Camera camera;                        // default 640 x 480, f = 525
+  std::vector<Eigen::Vector3d> points;  // world, metres
+  cv::Mat descriptors;                  // one random 32-byte row per point
+  std::vector<float> angles_deg;        // ORB orientation per point
 };
 
 // `num_points` points uniform in the box [lo, hi] (metres), seeded.
-SyntheticWorld MakeWorld(int num_points, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                         unsigned seed);
+SyntheticWorld MakeWorld(int num_points, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, unsigned seed);
 
 struct RenderOptions {
   double pixel_noise = 0.5;  // standard deviation per axis, pixels
@@ -34,8 +33,8 @@ struct RenderOptions {
 };
 
 // The features of the world seen from `camera_from_world` (points in front and in the image).
-FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world,
-                     const RenderOptions& options, std::mt19937& rng);
+FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world, const RenderOptions& options,
+                     std::mt19937& rng);
 
 // Features that match nothing: `count` random pixels with random descriptors and depth 3 m.
 FrameFeatures RandomFeatures(const Camera& camera, int count, std::mt19937& rng);
