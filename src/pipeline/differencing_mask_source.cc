@@ -10,16 +10,22 @@ DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const Homo
                                                Executor& executor)
     : klt_(klt), homography_(homography), options_(options), image_area_(image_area), executor_(executor) {}
 
-DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame& frame, const cv::Mat& previous_gray,
-                                                                 const TrackingPyramid& previous_pyramid) const {
-  Detection detection;
-  const auto start = SteadyClock::now();
+DynamicMaskInput DifferencingMaskSource::InputFor(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                  const TrackingPyramid& previous_pyramid) const {
   DynamicMaskInput input;
   input.previous_gray = previous_gray;
   input.current_gray = frame.gray;
   input.previous_pyramid = previous_pyramid;
-  input.current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
   input.image_area = image_area_;
+  return input;
+}
+
+DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                                 const TrackingPyramid& previous_pyramid) const {
+  Detection detection;
+  const auto start = SteadyClock::now();
+  DynamicMaskInput input = InputFor(frame, previous_gray, previous_pyramid);
+  input.current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
   detection.result = DetectDynamicMask(input, klt_, homography_, options_, &executor_);
   detection.pyramid = input.current_pyramid;
   detection.ms = MillisecondsSince(start);
@@ -29,11 +35,7 @@ DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame
 DifferencingMaskSource::Detection DifferencingMaskSource::DetectTriplet(const RgbdFrame& frame, const RgbdFrame* next) {
   Detection detection;
   const auto start = SteadyClock::now();
-  DynamicMaskInput input;
-  input.previous_gray = previous_gray_;
-  input.current_gray = frame.gray;
-  input.previous_pyramid = previous_pyramid_;
-  input.image_area = image_area_;
+  DynamicMaskInput input = InputFor(frame, previous_gray_, previous_pyramid_);
   // Frame t's pyramid was built last call when frame t came as the triplet's next frame.
   const bool came_as_next = SameImage(next_gray_, frame.gray);
   input.current_pyramid = came_as_next ? next_pyramid_ : BuildTrackingPyramid(frame.gray, klt_);

@@ -30,6 +30,10 @@ class DifferencingMaskSource : public MaskSource {
     TrackingPyramid pyramid;  // of the frame the mask is of
     double ms = 0.0;
   };
+  // The detector's input for `frame` against `previous_gray` (and its pyramid), without frame
+  // t's pyramid.
+  DynamicMaskInput InputFor(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                            const TrackingPyramid& previous_pyramid) const;
   // The mask of `frame` against `previous_gray` (and its pyramid): reads only the options.
   Detection Detect(const RgbdFrame& frame, const cv::Mat& previous_gray, const TrackingPyramid& previous_pyramid) const;
   // The triplet's detection of `frame` (against frame t-1 and `next`), reusing the last call's.

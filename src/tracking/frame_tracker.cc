@@ -193,6 +193,14 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features, cons
   return estimate;
 }
 
+bool FrameTracker::EnoughCorrespondences(const FrameFeatures& features, const std::vector<Match>& matches,
+                                         std::vector<Eigen::Vector3d>& points,
+                                         std::vector<Eigen::Vector2d>& pixels) const {
+  if (static_cast<int>(matches.size()) < options_.min_matches) return false;
+  Correspondences(features, matches, points, pixels);
+  return true;
+}
+
 void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEstimate& current,
                                          std::vector<Match>& current_matches, TrackingResult& result) {
   if (!current.ok || options_.rematch_radius_px <= 0.0) return;
@@ -203,10 +211,9 @@ void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEsti
                                                    current.camera_from_world, tight, &visible_angles_);
   result.match_ms += MillisecondsSince(start);
   start = SteadyClock::now();
-  if (static_cast<int>(rematched.size()) >= options_.min_matches) {
-    std::vector<Eigen::Vector3d> points;
-    std::vector<Eigen::Vector2d> pixels;
-    Correspondences(features, rematched, points, pixels);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  if (EnoughCorrespondences(features, rematched, points, pixels)) {
     PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world, options_.pose);
     if (second.ok && second.num_inliers >= current.num_inliers) {
       current = std::move(second);
@@ -226,10 +233,9 @@ void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pos
                               wide, &visible_angles_);
   result.match_ms += MillisecondsSince(start);
   start = SteadyClock::now();
-  if (static_cast<int>(matches.size()) >= options_.min_matches) {
-    std::vector<Eigen::Vector3d> points;
-    std::vector<Eigen::Vector2d> pixels;
-    Correspondences(features, matches, points, pixels);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  if (EnoughCorrespondences(features, matches, points, pixels)) {
     estimate = EstimatePose(points, pixels, camera_, options_.pose);
     if (estimate.ok && estimate.num_inliers < options_.min_matches) {
       estimate.ok = false;

@@ -144,6 +144,9 @@ class FrameTracker {
   // unchanged, when none is accepted or that refinement fails.
   bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked, FrameFeatures& joined,
                              std::vector<Match>& matches, PoseEstimate& estimate, TrackingResult& result);
+  // Correspondences() when there are at least min_matches matches; false (outputs untouched) otherwise.
+  bool EnoughCorrespondences(const FrameFeatures& features, const std::vector<Match>& matches,
+                             std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector2d>& pixels) const;
   // The map points (visible_points_) and pixels of `matches` into `features`, in match order.
   void Correspondences(const FrameFeatures& features, const std::vector<Match>& matches,
                        std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector2d>& pixels) const;

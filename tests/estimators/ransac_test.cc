@@ -100,26 +100,29 @@ TEST(Ransac, TheSameSeedGivesTheSameModelAndAnotherSeedTheSameLine) {
   EXPECT_NEAR(c.model.slope, 2.0, 0.02);
 }
 
-TEST(Ransac, CleanDataStopsAtOnce) {
+// `n` points (x_i, y_i) = (x(i), y(i)).
+template <typename X, typename Y>
+LineEstimator Points(int n, X x, Y y) {
   LineEstimator e;
-  for (int i = 0; i < 50; ++i) {
-    e.x.push_back(i);
-    e.y.push_back(3.0 * i - 2.0);
+  for (int i = 0; i < n; ++i) {
+    e.x.push_back(x(i));
+    e.y.push_back(y(i));
   }
-  RansacOptions options;
-  options.max_error = 0.01;
-  const RansacResult<Line> r = RunRansac(e, 50, options);
+  return e;
+}
+
+TEST(Ransac, CleanDataStopsAtOnce) {
+  const LineEstimator e = Points(
+      50, [](int i) { return double(i); }, [](int i) { return 3.0 * i - 2.0; });
+  const RansacResult<Line> r = RunRansac(e, 50, RansacOptions{/*max_error=*/0.01});
   ASSERT_TRUE(r.found);
   EXPECT_EQ(r.num_inliers, 50);
   EXPECT_EQ(r.iterations, 1);
 }
 
 TEST(Ransac, DegenerateOrTooFewDataAreNotFound) {
-  LineEstimator same_x;
-  for (int i = 0; i < 10; ++i) {
-    same_x.x.push_back(1.0);
-    same_x.y.push_back(i);
-  }
+  const LineEstimator same_x = Points(
+      10, [](int) { return 1.0; }, [](int i) { return double(i); });
   RansacOptions options;
   options.max_iterations = 50;
   const RansacResult<Line> degenerate = RunRansac(same_x, 10, options);
