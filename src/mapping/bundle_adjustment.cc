@@ -19,12 +19,12 @@
 namespace dynvo {
 
 void BundleAdjustmentOptions::Check() const {
-  RequireOption(window_keyframes >= 1, "tracking.local_ba", "window_keyframes", ">= 1", window_keyframes);
-  RequireOption(max_iterations >= 1, "tracking.local_ba", "max_iterations", ">= 1", max_iterations);
-  RequireOption(rounds >= 1, "tracking.local_ba", "rounds", ">= 1", rounds);
-  RequireOption(huber_delta_px > 0.0, "tracking.local_ba", "huber_delta_px", "> 0", huber_delta_px);
-  RequireOption(outlier_threshold_px > 0.0, "tracking.local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
-  RequireOption(virtual_baseline_m >= 0.0, "tracking.local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
+  RequireOption(window_keyframes >= 1, "local_ba", "window_keyframes", ">= 1", window_keyframes);
+  RequireOption(max_iterations >= 1, "local_ba", "max_iterations", ">= 1", max_iterations);
+  RequireOption(rounds >= 1, "local_ba", "rounds", ">= 1", rounds);
+  RequireOption(huber_delta_px > 0.0, "local_ba", "huber_delta_px", "> 0", huber_delta_px);
+  RequireOption(outlier_threshold_px > 0.0, "local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
+  RequireOption(virtual_baseline_m >= 0.0, "local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
 }
 
 namespace {

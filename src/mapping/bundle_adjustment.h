@@ -19,11 +19,11 @@ struct BundleAdjustmentOptions {
   double outlier_threshold_px = 4.0;  // observations with a larger final error are removed, pixels (> 0)
   double virtual_baseline_m = 0.08;   // depth enters as a stereo disparity with this baseline,
                                       // metres (ORB-SLAM RGB-D: bf / fx); 0 = reprojection only (>= 0)
-  // Throws InputError naming the key ("tracking.local_ba.window_keyframes ...") when out of range.
+  // Throws InputError naming the key ("local_ba.window_keyframes ...") when out of range.
   void Check() const;
 };
 
-// The config keys of the local BA (section "tracking.local_ba"): enabled, window_keyframes, virtual_baseline_m.
+// The config keys of the local BA (section "local_ba"): enabled, window_keyframes, virtual_baseline_m.
 void BindConfigKeys(const std::string& prefix, BundleAdjustmentOptions* options, ConfigRegistry* registry);
 
 struct BundleAdjustmentReport {

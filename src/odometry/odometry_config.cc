@@ -41,6 +41,7 @@ void OdometryConfig::Check() const {
     throw InputError("depth_trim.enabled needs map_occlusion.enabled (only what the static map explains is trimmed)");
   features.Check();
   tracking.Check();
+  local_ba.Check();
   run.Check();
 }
 
@@ -104,9 +105,10 @@ void NoteMovedKeys(ConfigRegistry* r) {
     r->NoteMoved(std::string("ego_motion.") + key, fixed);
   for (const char* key :
        {"matching.search_radius_px", "matching.ratio", "pose.seed", "pose.huber_delta_px", "map.max_keyframes",
-        "map.max_points", "keyframes.max_frames_between", "keyframes.min_tracked_ratio", "local_ba.enabled",
-        "local_ba.window_keyframes", "local_ba.virtual_baseline_m"})
+        "map.max_points", "keyframes.max_frames_between", "keyframes.min_tracked_ratio"})
     r->NoteMoved(key, std::string("is now tracking.") + key);
+  for (const char* key : {"enabled", "window_keyframes", "virtual_baseline_m"})
+    r->NoteMoved(std::string("tracking.local_ba.") + key, std::string("is now local_ba.") + key);
   for (const char* key : {"matching.max_descriptor_distance",
                           "matching.check_orientation",
                           "pose.ransac_threshold_px",
@@ -146,7 +148,7 @@ void NoteMovedKeys(ConfigRegistry* r) {
     r->NoteMoved(key, fixed);
   r->NoteMoved("depth_change.seeds_only", "was retired: the depth change always only seeds the map occlusion");
   r->NoteMoved("map_occlusion.seeded", "was retired: the map occlusion is always seeded");
-  r->NoteMoved("local_ba.background", "was retired: the local BA runs inside the keyframe's frame");
+  r->NoteMoved("local_ba.background", "was retired: the local BA runs between the keyframe and the next frame");
   r->NoteMoved("features.parallel_levels", "was retired: the pyramid levels run in parallel with --threads above 1");
   r->NoteMoved("run.preload", "was retired: frames are decoded ahead with --threads above 1");
   r->NoteMoved("run.lookahead", "was retired: dynvo-cli run --threads 1 runs every stage in turn");
@@ -174,6 +176,7 @@ void BindConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   BindConfigKeys("depth_trim", &c->depth_trim, r);
   BindConfigKeys("features", &c->features, r);
   BindConfigKeys("tracking", &c->tracking, r);
+  BindConfigKeys("local_ba", &c->local_ba, r);
   r->Bind("run.max_frames", &c->run.max_frames, "process at most this many frames (0 = all)");
   NoteMovedKeys(r);
 }

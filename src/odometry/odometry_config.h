@@ -1,7 +1,7 @@
 #pragma once
 // Every parameter of a run, grouped by stage, with defaults. Each options struct binds its own
 // config keys under its member's name (BindConfigKeys), so a key's path is the struct path:
-// `tracking.local_ba.enabled` is OdometryConfig::tracking.local_ba.enabled. The JSON config and
+// `tracking.pose.seed` is OdometryConfig::tracking.pose.seed. The JSON config and
 // `--set` overrides write through the ConfigRegistry, and Check() validates the whole.
 
 #include <optional>
@@ -19,6 +19,7 @@
 #include "ego_motion/homography.h"
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_options.h"
+#include "mapping/bundle_adjustment.h"
 #include "tracking/frame_tracker.h"
 
 namespace dynvo {
@@ -65,6 +66,7 @@ struct OdometryConfig {
   DepthTrimOptions depth_trim;        // "depth_trim.*"
   FeatureOptions features;            // "features.*"
   TrackerOptions tracking;            // "tracking.*"
+  BundleAdjustmentOptions local_ba;   // "local_ba.*": the mapper
   RunOptions run;                     // "run.*"
 
   // Throws InputError naming the first key whose value is out of range.

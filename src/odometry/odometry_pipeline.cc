@@ -40,7 +40,8 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
       mask_source_(MakeMaskSource(config, image_area, executor_)),
       refinements_(MakeRefinements(camera, config, executor_)),
       features_(camera, config.features, image_area, executor_),
-      tracker_(camera, config.tracking) {}
+      tracker_(camera, config.tracking),
+      mapper_(camera, config.local_ba) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
   const auto start = SteadyClock::now();
@@ -56,9 +57,16 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   // 2. The features minus those on the mask (refilled off it).
   out.features = features_.Finish(frame, out.mask);
   if (next != nullptr) features_.LookAhead(*next);
-  // 3. The pose from the static features against the local map; keyframes and local BA.
+  // 3. The pose from the static features against the local map; keyframes.
   out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed);
-  // 4. What the refinements carry into the next frame.
+  // 4. Local BA after a keyframe from a tracked pose; the tracker goes on from the refined pose.
+  const bool tracked_keyframe = out.tracking.keyframe_inserted && out.tracking.state == TrackingState::kTracking;
+  out.mapping = mapper_.Process(frame.index, tracked_keyframe, tracker_.mutable_map());
+  if (out.mapping.status == MappingStatus::kAdjusted) {
+    tracker_.AdoptRefinedKeyframe(out.mapping.keyframe_world_from_camera);
+    out.tracking.world_from_camera = out.mapping.keyframe_world_from_camera;
+  }
+  // 5. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)
     refinement->Observe(frame, out.tracking, tracker_.map());
@@ -99,7 +107,7 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.times.match_ms = tracking.match_ms;
   record.times.pose_ms = tracking.pose_ms;
   record.times.map_ms = tracking.map_ms;
-  record.times.local_ba_ms = tracking.local_ba_ms;
+  record.times.local_ba_ms = stages.mapping.ms;
   record.times.processing_ms = stages.processing_ms;
   return record;
 }

@@ -2,7 +2,7 @@
 // The paper's per-frame pipeline (papers/README.md §1, Fig. 5) as a short sequence of stages
 // with plain data between them (pipeline/frame_packets.h): a mask source (none = the baseline,
 // the paper's differencing, the ground truth), the mask refinements, the feature stage, the
-// tracker (frame-to-local-map pose, keyframes, local bundle adjustment). Work that does not
+// tracker (frame-to-local-map pose, keyframes), the mapper (local bundle adjustment). Work that does not
 // depend on frame t's state (the next frame's features and mask) runs ahead on the executor.
 
 #include <memory>
@@ -14,6 +14,7 @@
 #include "core/executor.h"
 #include "core/image_area.h"
 #include "dataset/tum_dataset.h"
+#include "mapping/local_mapper.h"
 #include "odometry/frame_record.h"
 #include "odometry/odometry_config.h"
 #include "pipeline/feature_stage.h"
@@ -57,6 +58,7 @@ class OdometryPipeline {
   std::vector<std::unique_ptr<MaskRefinement>> refinements_;
   FeatureStage features_;
   FrameTracker tracker_;
+  LocalMapper mapper_;
   cv::Mat last_mask_;  // frame t-1's final mask
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 // The plain data the pipeline's stages hand on for one frame (papers/README.md §1, Fig. 5):
-// the mask stage's MaskPacket, the feature stage's FeaturePacket and the tracker's
-// TrackingResult, gathered in a FrameOutput that observers (debug panels, mask quality) read.
+// the mask stage's MaskPacket, the feature stage's FeaturePacket, the tracker's TrackingResult
+// and the mapper's MappingPacket, gathered in a FrameOutput that observers (debug panels, mask
+// quality) read.
 
 #include <string>
 
@@ -9,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "features/feature_filter.h"
+#include "mapping/local_mapper.h"
 #include "tracking/frame_tracker.h"
 
 namespace dynvo {
@@ -62,7 +64,8 @@ struct FeaturePacket {
 struct FrameOutput {
   MaskPacket mask;
   FeaturePacket features;
-  TrackingResult tracking;
+  TrackingResult tracking;  // world_from_camera: refined by the mapper when it adjusted
+  MappingPacket mapping;
   double refinement_upkeep_ms = 0.0;  // after tracking: what the refinements carry to frame t+1
   double processing_ms = 0.0;         // the whole frame, wall time
 };

@@ -41,7 +41,6 @@ void TrackerOptions::Check() const {
   pose.Check();
   map.Check();
   keyframes.Check();
-  local_ba.Check();
   coherent_motion.Check();
   RequireOption(min_matches >= 4, "tracking", "min_matches", ">= 4", min_matches);
   RequireOption(wide_search_factor >= 1.0, "tracking", "wide_search_factor", ">= 1", wide_search_factor);
@@ -100,8 +99,7 @@ void FrameTracker::AcceptPose(const FrameFeatures& used, double stamp, const std
       DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers, reference_tracked_,
                      keyframe_camera_from_world, estimate.camera_from_world);
   result.map_ms = MillisecondsSince(start);
-  if (decision.insert)
-    result.world_from_camera = InsertKeyframe(used, stamp, matches, estimate.inliers, result.world_from_camera, result);
+  if (decision.insert) InsertKeyframe(used, stamp, matches, estimate.inliers, result.world_from_camera, result);
 }
 
 void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, const Pose& predicted_world_from_camera,
@@ -428,10 +426,10 @@ bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp, const Po
   return true;
 }
 
-Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
+void FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
                                   const std::vector<uint8_t>& inliers, const Pose& world_from_camera,
                                   TrackingResult& result) {
-  SteadyClock::time_point start = SteadyClock::now();
+  const SteadyClock::time_point start = SteadyClock::now();
   Keyframe keyframe;
   keyframe.frame_index = frame_index_;
   keyframe.stamp = stamp;
@@ -472,24 +470,12 @@ Pose FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp, c
   }
   map_.AddKeyframe(std::move(keyframe));
   result.keyframe_inserted = true;
-  result.map_ms += MillisecondsSince(start);
-
-  start = SteadyClock::now();
-  Pose refined = world_from_camera;
-  if (options_.local_ba.enabled) {
-    const BundleAdjustmentReport report = RunLocalBundleAdjustment(map_, camera_, options_.local_ba);
-    if (report.ok) {
-      refined = map_.keyframes().back().camera_from_world.inverse();
-      result.local_ba_rms_px = report.final_inlier_rms_px;
-    }
-  }
-  result.local_ba_ms = MillisecondsSince(start);
   frames_since_keyframe_ = 0;
   // The inliers of the keyframe (as ORB-SLAM counts the reference keyframe's points seen by
   // several keyframes): new points, seen once, do not count, or the ratio would fire on every
   // frame where fewer features have depth and match than the keyframe had.
   reference_tracked_ = static_cast<int>(std::count(inliers.begin(), inliers.end(), 1));
-  return refined;
+  result.map_ms += MillisecondsSince(start);
 }
 
 void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry* r) {
@@ -497,7 +483,6 @@ void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry
   BindConfigKeys(prefix + ".pose", &o->pose, r);
   BindConfigKeys(prefix + ".map", &o->map, r);
   BindConfigKeys(prefix + ".keyframes", &o->keyframes, r);
-  BindConfigKeys(prefix + ".local_ba", &o->local_ba, r);
   BindConfigKeys(prefix + ".coherent_motion", &o->coherent_motion, r);
   r->Bind(prefix + ".min_matches", &o->min_matches, "fewer map matches: wider search, then lost");
   r->Bind(prefix + ".max_new_points", &o->max_new_points, "new map points per keyframe at most");

@@ -2,9 +2,9 @@
 // Frame-to-local-map tracking: constant-velocity prediction, projection matching, pose
 // refinement (EPnP + RANSAC when the prediction fails), matching again around the estimate and
 // refining once more, optionally leaving out inliers that move with their neighbours
-// (coherent_motion.h), keyframe insertion with new map points from the frame's depth, local
-// bundle adjustment at each keyframe, a bounded map, and recovery from failures. The world
-// frame is the first frame's camera.
+// (coherent_motion.h), keyframe insertion with new map points from the frame's depth, a
+// bounded map, and recovery from failures. The local bundle adjustment of each keyframe is the
+// mapper's (mapping/local_mapper.h), between frames. The world frame is the first frame's camera.
 
 #include <cstdint>
 #include <string>
@@ -12,7 +12,6 @@
 
 #include "core/camera.h"
 #include "features/frame_features.h"
-#include "mapping/bundle_adjustment.h"
 #include "mapping/keyframe_policy.h"
 #include "mapping/local_map.h"
 #include "pose/pose_solver.h"
@@ -30,7 +29,6 @@ struct TrackerOptions {
   PoseSolverOptions pose;                     // "tracking.pose.*"
   LocalMapOptions map;                        // "tracking.map.*"
   KeyframeOptions keyframes;                  // "tracking.keyframes.*"
-  BundleAdjustmentOptions local_ba;           // "tracking.local_ba.*"
   int min_matches = 20;                       // map matches / pose inliers needed to track; also the
                                               // depth features needed to seed the map (>= 4)
   double wide_search_factor = 3.0;            // search radius multiplier of the EPnP retry (>= 1)
@@ -64,7 +62,7 @@ struct TrackerOptions {
 };
 
 // The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes,
-// .local_ba, .coherent_motion).
+// .coherent_motion).
 void BindConfigKeys(const std::string& prefix, TrackerOptions* options, ConfigRegistry* registry);
 
 struct TrackingResult {
@@ -79,8 +77,8 @@ struct TrackingResult {
                                          // Track's `features`, then the `readmitted` ones in that
                                          // order (empty when the frame was not tracked)
   bool used_epnp = false;                // the pose came from the EPnP + RANSAC retry
-  bool keyframe_inserted = false;
-  int map_keyframes = 0;  // local map size after this frame
+  bool keyframe_inserted = false;        // a new keyframe: from the tracked pose, or a (re)seeded map
+  int map_keyframes = 0;                 // local map size after this frame
   int map_points = 0;
   int coherent_motion_rejected = 0;              // pose inliers that moved with their neighbours, left out
                                                  // of the pose and the map (coherent_motion)
@@ -88,9 +86,7 @@ struct TrackingResult {
                                                  // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;              // false: the new keyframe's depths were left out of BA
                                                  // (see max_ba_depth_rotation_deg_s)
-  double local_ba_rms_px = 0.0;                  // final inlier RMS of the local BA (keyframes only)
   double match_ms = 0, pose_ms = 0, map_ms = 0;  // per-stage wall times, ms
-  double local_ba_ms = 0;                        // local BA wall time (keyframes only)
 };
 
 class FrameTracker {
@@ -107,8 +103,13 @@ class FrameTracker {
   // feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr);
 
-  // The local map as of the last Track.
+  // The local map as of the last Track (and the mapper's work on it since).
   const LocalMap& map() const { return map_; }
+  // The map for the mapper to refine between frames, never while Track runs.
+  LocalMap& mutable_map() { return map_; }
+  // The mapper refined the keyframe the last Track inserted from a tracked pose: the motion
+  // model continues from that refined pose (its world_from_camera).
+  void AdoptRefinedKeyframe(const Pose& world_from_camera) { motion_.ReplaceLast(world_from_camera); }
   const TrackerOptions& options() const { return options_; }
 
  private:
@@ -166,8 +167,8 @@ class FrameTracker {
   // false (map untouched) when fewer than min_matches features have usable depth.
   bool SeedMap(const FrameFeatures& features, double stamp, const Pose& world_from_camera);
   // Makes the frame a keyframe: observations of its inlier matches plus new points from its
-  // other depth features; then local BA. Returns the (possibly refined) world_from_camera.
-  Pose InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
+  // other depth features.
+  void InsertKeyframe(const FrameFeatures& features, double stamp, const std::vector<Match>& matches,
                       const std::vector<uint8_t>& inliers, const Pose& world_from_camera, TrackingResult& result);
 
   Camera camera_;

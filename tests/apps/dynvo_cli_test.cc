@@ -107,7 +107,7 @@ TEST(DynvoCli, ConfigKeysListsEveryKey) {
   ASSERT_EQ(o.exit_code, 0);
   for (const char* key :
        {"dynamic_mask.erode_kernel_size", "dynamic_mask.backward", "features.num_features",
-        "tracking.pose.huber_delta_px", "tracking.local_ba.window_keyframes", "dataset.depth_factor", "mask_source"})
+        "tracking.pose.huber_delta_px", "local_ba.window_keyframes", "dataset.depth_factor", "mask_source"})
     EXPECT_NE(o.out.find(std::string("`") + key + "`"), std::string::npos) << key;
 }
 

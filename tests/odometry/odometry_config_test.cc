@@ -71,23 +71,23 @@ TEST(OdometryConfig, EveryKeyIsTheFieldsStructPath) {
   // A key's first part names a member of OdometryConfig (or is one), so `--set` reads like code.
   const std::vector<std::string> sections = {
       "dataset.",       "camera.",     "mask_source", "homography.", "dynamic_mask.", "depth_change.",
-      "map_occlusion.", "depth_trim.", "features.",   "tracking.",   "run."};
+      "map_occlusion.", "depth_trim.", "features.",   "tracking.",   "local_ba.",  "run."};
   for (const std::string& line : DescribeConfigKeys()) {
     bool known = false;
     for (const std::string& s : sections) known = known || line.rfind(s, 0) == 0;
     EXPECT_TRUE(known) << line;
   }
-  OdometryConfig c = LoadOdometryConfig("", {"tracking.local_ba.window_keyframes=3", "tracking.pose.seed=11",
+  OdometryConfig c = LoadOdometryConfig("", {"local_ba.window_keyframes=3", "tracking.pose.seed=11",
                                              "homography.seed=12", "tracking.matching.ratio=0.8"});
-  EXPECT_EQ(c.tracking.local_ba.window_keyframes, 3);
+  EXPECT_EQ(c.local_ba.window_keyframes, 3);
   EXPECT_EQ(c.tracking.pose.seed, 11u);
   EXPECT_EQ(c.homography.seed, 12u);
   EXPECT_DOUBLE_EQ(c.tracking.matching.ratio, 0.8);
 }
 
 TEST(OdometryConfig, KeysOfEarlierVersionsSayWhatBecameOfThem) {
-  const std::string moved = LoadError("", {"local_ba.enabled=false"});
-  EXPECT_NE(moved.find("key 'local_ba.enabled' is now tracking.local_ba.enabled"), std::string::npos) << moved;
+  const std::string moved = LoadError("", {"tracking.local_ba.enabled=false"});
+  EXPECT_NE(moved.find("key 'tracking.local_ba.enabled' is now local_ba.enabled"), std::string::npos) << moved;
   const std::string source = LoadError("", {"dynamic_mask.enabled=false"});
   EXPECT_NE(source.find("is now mask_source"), std::string::npos) << source;
   const std::string retired = LoadError("", {"run.lookahead=false"});
@@ -105,8 +105,8 @@ TEST(OdometryConfig, ErrorsNameFileAndKey) {
   EXPECT_NE(LoadError(dir.path().string() + "/missing.json", {}).find("missing.json: cannot open"), std::string::npos);
   const std::string range = LoadError("", {"dynamic_mask.erode_iterations=-1"});
   EXPECT_NE(range.find("dynamic_mask.erode_iterations"), std::string::npos) << range;
-  const std::string window = LoadError("", {"tracking.local_ba.window_keyframes=0"});
-  EXPECT_NE(window.find("tracking.local_ba.window_keyframes must be >= 1"), std::string::npos) << window;
+  const std::string window = LoadError("", {"local_ba.window_keyframes=0"});
+  EXPECT_NE(window.find("local_ba.window_keyframes must be >= 1"), std::string::npos) << window;
   const std::string features = LoadError("", {"features.num_features=0"});
   EXPECT_NE(features.find("features.num_features"), std::string::npos) << features;
   EXPECT_NE(LoadError("", {"dynamic_mask.backward=sideways"}).find("dynamic_mask.backward"), std::string::npos);
