@@ -3,7 +3,7 @@
 # a generated 900-frame
 # sequence (the local map is bounded: memory must not grow with sequence length), read
 # from run.json ("memory.peak_rss_mb", getrusage). Writes bench/results/memory.md and memory.csv
-# (bench/memory_table.py).
+# (`python3 -m dynvo_tools memory-table`).
 #   bash bench/memory.sh          (env: DYNVO_BUILD_DIR, FRAMES=900)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -28,5 +28,6 @@ for config in paper dynvo; do
       --set run.max_frames="$n" --out "${runs[-1]}"
   done
 done
-python3 "$root/bench/memory_table.py" "$results/memory.csv" "${runs[@]}" > "$results/memory.md"
+PYTHONPATH="$root/tools${PYTHONPATH:+:$PYTHONPATH}" "${PYTHON:-/usr/bin/python3}" -m dynvo_tools memory-table \
+  --csv "$results/memory.csv" "${runs[@]}" > "$results/memory.md"
 cat "$results/memory.md"

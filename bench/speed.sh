@@ -4,7 +4,7 @@
 # RgbdOdometry and ICPOdometry on the same in-memory frames, in the same process
 # (bench/odometry_speed.cc): median over frames, median of RUNS runs, ratio to RgbdOdometry (per run, interleaved),
 # and the per-stage split. Sequences: fr1_rpy_head150 from ../shared when present, and a
-# generated dynamic sequence. Writes bench/results/speed.md and speed.csv (bench/speed_table.py).
+# generated dynamic sequence. Writes bench/results/speed.md and speed.csv (`python3 -m dynvo_tools speed-table`).
 #   bash bench/speed.sh          (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR, RUNS=5)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -41,7 +41,7 @@ for seq in "${sequences[@]}"; do
   done
 done
 
-python3 "$root/bench/speed_table.py" "$work" "$(nproc)" \
-  "$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)" "$results/speed.csv" \
+PYTHONPATH="$root/tools${PYTHONPATH:+:$PYTHONPATH}" "${PYTHON:-/usr/bin/python3}" -m dynvo_tools speed-table "$work" \
+  --cpu "$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)" --csv "$results/speed.csv" \
   > "$results/speed.md"
 cat "$results/speed.md"

@@ -2,18 +2,24 @@
 # The benchmark suite: dev and validation splits of generated dynamic sequences (people inserted
 # into real TUM frames, and synthetic scenes), each run with the baseline, paper and dynvo
 # configs and compared with its twin without people. Builds the binaries, then runs
-# bench/suite.py (all the logic; its docstring tells the rest). Writes
-# bench/results/suite_<split>.csv and suite_<split>.md.
+# `python3 -m dynvo_tools suite` (tools/dynvo_tools/suite.py: all the logic; its docstring tells
+# the rest). Writes bench/results/suite_<split>.csv and suite_<split>.md.
 #   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,dynvo]
-#                       [--out DIR] [--jobs N]
-#   bash bench/suite.sh table --split dev      (the Markdown again from the CSV; no build, no runs)
-#   (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR)
+#                       [--out DIR] [--results DIR] [--jobs N]
+#   bash bench/suite.sh table --split dev      (the Markdown again from the CSV; no build, no runs:
+#                                               the command suite-table)
+#   (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR, PYTHON)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${DYNVO_BUILD_DIR:-$root/build}"
 
-if [ "${1:-}" != "table" ]; then
+command=suite
+if [ "${1:-}" = "table" ]; then
+  shift
+  command=suite-table
+else
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j "$(nproc)" --target dynvo-cli rpe ate dynvo-synth dynvo-insert-people >/dev/null
 fi
-DYNVO_BIN_DIR="$build/bin" exec /usr/bin/python3 "$root/bench/suite.py" "$@"
+DYNVO_BIN_DIR="$build/bin" PYTHONPATH="$root/tools${PYTHONPATH:+:$PYTHONPATH}" \
+  exec "${PYTHON:-/usr/bin/python3}" -m dynvo_tools "$command" "$@"

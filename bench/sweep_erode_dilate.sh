@@ -14,22 +14,24 @@ jobs="${JOBS:-2}"
 results="$root/bench/results"
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j "$(nproc)" --target dynvo-cli rpe dynvo-synth >/dev/null
+cmake --build "$build" -j "$(nproc)" --target dynvo-cli rpe ate dynvo-synth >/dev/null
 export DYNVO_BIN_DIR="$build/bin"
+python="${PYTHON:-/usr/bin/python3}"
 seq="$work/seq_${frames}f/synth_walking_across_xyz"
 synth_args=(--scenario walking_across --camera-path xyz --frames "$frames" --seed 1)
 [ -f "$seq/rgb.txt" ] || "$DYNVO_BIN_DIR/dynvo-synth" "${synth_args[@]}" --out "$seq" --force >&2
 
-# The baseline (no mask) on the same sequence, as the reference the sweep's RPE is read against.
+# The baseline (no mask) on the same sequence, as the reference the sweep's RPE is read against:
+# `dynvo_tools evaluate` runs and evaluates it; its RMSEs are kept in rmse.json, written last.
 baseline="$work/baseline_${frames}f"
-if [ ! -f "$baseline/rpe.json" ]; then
-  "$DYNVO_BIN_DIR/dynvo-cli" run --quiet --force --dataset "$seq" --config "$root/configs/baseline.json" \
-    --out "$baseline"
-  "$DYNVO_BIN_DIR/rpe" "$seq/groundtruth.txt" "$baseline/trajectory.txt" --json > "$baseline/rpe.json.tmp"
-  mv "$baseline/rpe.json.tmp" "$baseline/rpe.json"
+if [ ! -f "$baseline/rmse.json" ]; then
+  rmse="$(PYTHONPATH="$root/tools${PYTHONPATH:+:$PYTHONPATH}" "$python" -m dynvo_tools evaluate \
+    --dataset "$seq" --out "$baseline" --config "$root/configs/baseline.json")"
+  printf '%s\n' "$rmse" > "$baseline/rmse.json.tmp"
+  mv "$baseline/rmse.json.tmp" "$baseline/rmse.json"
 fi
-baseline_rpe="$("${PYTHON:-/usr/bin/python3}" -c 'import json, sys
-print("%.5f" % json.load(open(sys.argv[1]))["translational_error_m"]["rmse"])' "$baseline/rpe.json")"
+baseline_rpe="$("$python" -c 'import json, sys
+print("%.5f" % json.load(open(sys.argv[1]))["rpe_rmse_m"])' "$baseline/rmse.json")"
 
 cd "$root"
 status=0

@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libceres-dev
   libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev
-  python3 python3-numpy python3-matplotlib python3-pil python3-pyflakes
+  python3 python3-numpy python3-matplotlib python3-pil python3-pyflakes mypy
   opencv-doc
 )
 

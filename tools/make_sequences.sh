@@ -12,7 +12,7 @@
 #                                   TUM presets (only when the project's shared data is present)
 # A sequence already there is kept when it is what would be generated (same scenario, camera
 # path, seed and frame count, read from its rgb.txt), else it is generated again.
-# Used by tools/table1.py and the bench scripts; they build the binaries first.
+# Used by `python3 -m dynvo_tools table1` and the bench scripts; they build the binaries first.
 #   bash tools/make_sequences.sh --out DIR [--frames 300] [--seed 1]
 #   (env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin; DYNVO_SHARED_DIR, default ../shared)
 set -euo pipefail

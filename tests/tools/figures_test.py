@@ -1,34 +1,33 @@
-"""Tests of tools/figures.py on a tiny generated sequence (30 frames at 10 Hz: 3 s, for 1 s RPE windows): the three PNGs are
+"""Tests of `python3 -m dynvo_tools figures` (tools/dynvo_tools/figures.py) on a tiny generated sequence (30 frames at 10 Hz: 3 s, for 1 s RPE windows): the three PNGs are
 written and are real images of a sensible size, earlier outputs are not overwritten without
---force, existing runs can be reused, and a missing dataset fails with one clear line.
+--force, existing runs can be reused (not run again), and a missing dataset fails with one
+clear line.
 
 Run by ctest (figures_test) with Debian's python3 and DYNVO_BIN_DIR / DYNVO_SOURCE_DIR set;
 by hand:
   DYNVO_BIN_DIR=build/bin DYNVO_SOURCE_DIR=. /usr/bin/python3 tests/tools/figures_test.py
 """
+from __future__ import annotations
 
 import os
 import shutil
 import struct
 import subprocess
-import sys
 import tempfile
 import unittest
 
-SOURCE_DIR = os.environ.get("DYNVO_SOURCE_DIR") or os.path.join(os.path.dirname(__file__), "..", "..")
-BIN_DIR = os.environ.get("DYNVO_BIN_DIR") or os.path.join(SOURCE_DIR, "build", "bin")
-FIGURES = os.path.join(SOURCE_DIR, "tools", "figures.py")
+import command
+
+BIN_DIR = os.environ.get("DYNVO_BIN_DIR") or os.path.join(command.SOURCE_DIR, "build", "bin")
 NAMES = ("fig_rpe_over_time.png", "fig_trajectory_top.png", "fig_mask_panels.png")
 
 
-def run_figures(*args):
-    env = dict(os.environ, DYNVO_BIN_DIR=BIN_DIR)
-    return subprocess.run([sys.executable, FIGURES] + list(args), env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                          universal_newlines=True)
+def run_figures(*args: str) -> subprocess.CompletedProcess[str]:
+    """`python3 -m dynvo_tools figures ARGS...` with the binaries of BIN_DIR."""
+    return command.run_command("figures", *args, env=dict(os.environ, DYNVO_BIN_DIR=BIN_DIR))
 
 
-def png_size(path):
+def png_size(path: str) -> tuple[int, int]:
     """(width, height) from the PNG header; fails the test when it is not a PNG."""
     with open(path, "rb") as f:
         head = f.read(24)
@@ -39,7 +38,7 @@ def png_size(path):
 
 class FiguresTest(unittest.TestCase):
     @classmethod
-    def setUpClass(cls):
+    def setUpClass(cls) -> None:
         cls.tmp = tempfile.mkdtemp(prefix="figures_test_")
         cls.dataset = os.path.join(cls.tmp, "synth_two_crossing_30")
         subprocess.run([os.path.join(BIN_DIR, "dynvo-synth"), "--scenario", "two_crossing",
@@ -51,10 +50,10 @@ class FiguresTest(unittest.TestCase):
                                 "--frames-to-show", "10,20")
 
     @classmethod
-    def tearDownClass(cls):
+    def tearDownClass(cls) -> None:
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def assert_figures(self, folder, min_height):
+    def assert_figures(self, folder: str, min_height: dict[str, int]) -> None:
         for name in NAMES:
             path = os.path.join(folder, name)
             self.assertTrue(os.path.isfile(path), path)
@@ -65,7 +64,7 @@ class FiguresTest(unittest.TestCase):
             self.assertLessEqual(height, 6000, name)
             self.assertGreater(os.path.getsize(path), 20000, name)  # not a blank canvas
 
-    def test_writes_the_three_figures(self):
+    def test_writes_the_three_figures(self) -> None:
         self.assertEqual(self.first.returncode, 0, self.first.stderr)
         # Two frames of panels: two blocks of 2 x 4 tiles.
         self.assert_figures(self.out, {"fig_mask_panels.png": 1000})
@@ -74,25 +73,32 @@ class FiguresTest(unittest.TestCase):
         for name in ("rpe_pairs_paper.csv", "rpe_pairs_baseline.csv", "ate_aligned_paper.txt",
                      "ate_aligned_baseline.txt"):
             self.assertTrue(os.path.isfile(os.path.join(self.work, name)), name)
+        for run in ("paper", "baseline"):  # the reports beside each run
+            for name in ("rpe.json", "ate.json"):
+                self.assertTrue(os.path.isfile(os.path.join(self.work, run, name)), (run, name))
         self.assertEqual(self.first.stdout.split(),
                          [os.path.join(self.out, name) for name in NAMES])
 
-    def test_reuses_existing_runs(self):
+    def test_reuses_existing_runs(self) -> None:
         self.assertEqual(self.first.returncode, 0, self.first.stderr)
+        self.assertIn("dynvo-cli run", self.first.stderr)  # runs are announced on stderr
+        trajectories = [os.path.join(self.work, run, "trajectory.txt") for run in ("paper", "baseline")]
+        stamps = [os.stat(path).st_mtime_ns for path in trajectories]
         out = os.path.join(self.tmp, "reused")
         result = run_figures("--paper-run", os.path.join(self.work, "paper"), "--baseline-run",
                              os.path.join(self.work, "baseline"), "--work", out, "--out", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertNotIn("dynvo-cli", result.stderr)  # nothing was run again
+        self.assertEqual([os.stat(path).st_mtime_ns for path in trajectories], stamps)
         self.assert_figures(out, {"fig_mask_panels.png": 1000})
 
-    def test_does_not_overwrite_without_force(self):
+    def test_does_not_overwrite_without_force(self) -> None:
         self.assertEqual(self.first.returncode, 0, self.first.stderr)
         result = run_figures("--dataset", self.dataset, "--work", self.work, "--out", self.out)
         self.assertEqual(result.returncode, 1)
         self.assertIn("exists (pass --force to overwrite)", result.stderr)
 
-    def test_missing_dataset_fails_clearly(self):
+    def test_missing_dataset_fails_clearly(self) -> None:
         missing = os.path.join(self.tmp, "no_such_sequence")
         out = os.path.join(self.tmp, "missing_out")
         result = run_figures("--dataset", missing, "--work", out, "--out", out)
@@ -101,7 +107,7 @@ class FiguresTest(unittest.TestCase):
                          ["figures: error: --dataset %s: no such folder" % missing])
         self.assertFalse(os.path.exists(out))
 
-    def test_dataset_without_groundtruth_fails_clearly(self):
+    def test_dataset_without_groundtruth_fails_clearly(self) -> None:
         folder = os.path.join(self.tmp, "no_groundtruth")
         os.makedirs(folder, exist_ok=True)
         open(os.path.join(folder, "rgb.txt"), "w").close()

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""Test of tools/sweep.sh on a tiny generated sequence: the Slurm job-array script it writes
-(parsed, and one array index run locally as sbatch would run it), the RPE it records
+"""Test of the `sweep` command (python3 -m dynvo_tools sweep, what tools/sweep.sh runs) on a
+tiny generated sequence: the Slurm job-array script it writes (parsed, and one array index run
+locally as sbatch would run it, through tools/sweep.sh), the RPE it records
 (equal to what `rpe` prints), resuming (finished points skipped, a half-finished one
 redone), the CSV and heat map, and bad grids (one clear error before any run).
 Run by ctest (sweep_test) with DYNVO_BIN_DIR and DYNVO_SOURCE_DIR set:
   DYNVO_BIN_DIR=build/bin DYNVO_SOURCE_DIR=. /usr/bin/python3 tests/tools/sweep_test.py
 """
+from __future__ import annotations
 
 import csv
 import hashlib
@@ -19,13 +21,15 @@ import sys
 import tempfile
 import unittest
 
+import command
+
 BIN = os.environ.get("DYNVO_BIN_DIR", "")
 SOURCE = os.environ.get("DYNVO_SOURCE_DIR", "")
 SWEEP = os.path.join(SOURCE, "tools", "sweep.sh")
 
 # 2 x 2 grid points, numbered as itertools.product: the last key varies fastest.
 GRID = {
-    "base_config": os.path.join(SOURCE, "configs", "paper.json"),
+    "base_config": os.path.abspath(os.path.join(SOURCE, "configs", "paper.json")),  # the grid is elsewhere
     "parameters": {"dynamic_mask.erode_kernel_size": [2, 4],
                    "dynamic_mask.threshold": ["otsu", "fixed"]},
 }
@@ -34,39 +38,38 @@ POINTS = [{"dynamic_mask.erode_kernel_size": e, "dynamic_mask.threshold": t}
 INDEX = 2  # erode_kernel_size 4, otsu: the one array task run here
 
 
-def env():
+def env() -> dict[str, str]:
     e = dict(os.environ, PYTHON=sys.executable, DYNVO_BIN_DIR=BIN)
     e.pop("SLURM_ARRAY_TASK_ID", None)
     return e
 
 
-def sweep(*args, extra_env=None):
-    return subprocess.run(["bash", SWEEP, *args], capture_output=True, text=True,
-                          env=dict(env(), **(extra_env or {})))
+def sweep(*args: str) -> subprocess.CompletedProcess[str]:
+    return command.run_command("sweep", *args, env=env())
 
 
-def read(path):
+def read(path: str) -> str:
     with open(path) as f:
         return f.read()
 
 
-def read_json(path):
+def read_json(path: str) -> dict:
     return json.loads(read(path))
 
 
-def read_csv(path):
+def read_csv(path: str) -> list[dict[str, str]]:
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
 
 
-def run_dirs(out, dataset="seq"):
+def run_dirs(out: str, dataset: str = "seq") -> list[str]:
     folder = os.path.join(out, "runs", dataset)
     return sorted(os.listdir(folder)) if os.path.isdir(folder) else []
 
 
 class SweepTest(unittest.TestCase):
     @classmethod
-    def setUpClass(cls):
+    def setUpClass(cls) -> None:
         if not BIN or not SOURCE:
             raise RuntimeError("DYNVO_BIN_DIR and DYNVO_SOURCE_DIR must be set (ctest sets them)")
         cls.tmp = tempfile.mkdtemp(prefix="dynvo-sweep-test-")
@@ -81,24 +84,18 @@ class SweepTest(unittest.TestCase):
             json.dump(GRID, f)
 
     @classmethod
-    def tearDownClass(cls):
+    def tearDownClass(cls) -> None:
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def write_grid(self, name, grid):
+    def write_grid(self, name: str, grid: dict) -> str:
         path = os.path.join(self.tmp, name)
         with open(path, "w") as f:
             json.dump(grid, f)
         return path
 
-    def test_slurm_array_index_collect_and_resume(self):
-        out = os.path.join(self.tmp, "out")
-        script = os.path.join(self.tmp, "sweep.sbatch")
-        r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--jobs", "2", "--slurm", script)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(run_dirs(out), [], "--slurm must run nothing")
-
-        # The script: shebang, #SBATCH directives before the first command, an array of one
-        # task per grid point, and one command running the sweep for the task's index.
+    def check_slurm_script(self, script: str, out: str) -> None:
+        """The script: shebang, #SBATCH directives before the first command, an array of one
+        task per grid point, and one command running the sweep for the task's index."""
         lines = read(script).splitlines()
         self.assertEqual(lines[0], "#!/bin/bash")
         first_command = next(i for i, l in enumerate(lines) if l.strip() and not l.startswith("#"))
@@ -117,7 +114,9 @@ class SweepTest(unittest.TestCase):
         same(words[words.index("--out") + 1], out)
         self.assertEqual(words[words.index("--index") + 1], "$SLURM_ARRAY_TASK_ID")
 
-        # One array task, run as sbatch would: exactly its grid point's outputs appear.
+    def run_array_task(self, script: str, out: str) -> tuple[str, float]:
+        """Runs one array task as sbatch would: exactly its grid point's outputs appear, and its
+        RPE is what rpe prints on that trajectory. Returns the trajectory and the RPE RMSE."""
         r = subprocess.run(["bash", script], capture_output=True, text=True,
                            env=dict(env(), SLURM_ARRAY_TASK_ID=str(INDEX)))
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -140,6 +139,17 @@ class SweepTest(unittest.TestCase):
         recorded = read_json(os.path.join(run, "rpe.json"))
         self.assertEqual(recorded, rpe_json)
         self.assertAlmostEqual(recorded["translational_error_m"]["rmse"], printed_rmse, places=6)
+        return est, recorded["translational_error_m"]["rmse"]
+
+    def test_slurm_array_index_collect_and_resume(self) -> None:
+        out = os.path.join(self.tmp, "out")
+        script = os.path.join(self.tmp, "sweep.sbatch")
+        r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--jobs", "2", "--slurm", script)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(run_dirs(out), [], "--slurm must run nothing")
+
+        self.check_slurm_script(script, out)
+        est, rmse = self.run_array_task(script, out)
 
         # Collecting now: the finished point has numbers, the others show as missing.
         r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--collect")
@@ -147,7 +157,7 @@ class SweepTest(unittest.TestCase):
         self.assertIn("3 of 4 runs are not finished", r.stderr)
         rows = read_csv(os.path.join(out, "sweep.csv"))
         self.assertEqual([row["status"] for row in rows], ["missing", "missing", "finished", "missing"])
-        self.assertEqual(float(rows[INDEX]["rpe_trans_rmse_m"]), recorded["translational_error_m"]["rmse"])
+        self.assertEqual(float(rows[INDEX]["rpe_trans_rmse_m"]), rmse)
         self.assertEqual(rows[0]["rpe_trans_rmse_m"], "")
 
         # The whole sweep skips the finished point and runs the other three.
@@ -197,7 +207,7 @@ class SweepTest(unittest.TestCase):
         with open(other) as f:
             self.assertEqual(json.load(f)["dynvo_cli_sha256"], binary)
 
-    def check_rejected(self, grid, *expected):
+    def check_rejected(self, grid: dict, *expected: str) -> None:
         path = self.write_grid("bad_grid.json", grid)
         out = os.path.join(self.tmp, "bad_out")
         r = sweep(path, "--dataset", self.seq, "--out", out)
@@ -209,16 +219,16 @@ class SweepTest(unittest.TestCase):
             self.assertIn(text, message)
         self.assertFalse(os.path.exists(out), "nothing may run for a bad grid")
 
-    def test_unknown_key_is_rejected_before_any_run(self):
+    def test_unknown_key_is_rejected_before_any_run(self) -> None:
         self.check_rejected({"parameters": {"dynamic_mask.erode_kernel_size": [2, 4],
                                             "dynamic_mask.erode_kernel_siz": [3]}},
                             "'dynamic_mask.erode_kernel_siz'", "unknown key")
 
-    def test_empty_value_list_is_rejected(self):
+    def test_empty_value_list_is_rejected(self) -> None:
         self.check_rejected({"parameters": {"dynamic_mask.erode_kernel_size": []}},
                             "'dynamic_mask.erode_kernel_size'", "expected a non-empty list of values")
 
-    def test_value_out_of_range_is_rejected(self):
+    def test_value_out_of_range_is_rejected(self) -> None:
         self.check_rejected({"parameters": {"dynamic_mask.dilate_iterations": [1, -1]}},
                             "'dynamic_mask.dilate_iterations' = -1", "must be in")
 

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The benchmark suite: two splits of generated dynamic sequences, each run with several configs.
 
 dev (parameters and defaults may be tuned on it) and validation (reported only, never used to
@@ -11,36 +10,30 @@ and IoU against the generated masks, and the median and p90 of `processing_ms` p
 Sequences are generated into OUT/seq (kept while their spec.json matches what would be
 generated), runs go to OUT/runs/SEQUENCE/CONFIG, up to --jobs at a time. Writes
 RESULTS/suite_<split>.csv (one row per sequence and config) and RESULTS/suite_<split>.md, a table
-made from the CSV alone (`suite.py table` makes it again without running anything).
+made from the CSV alone (the command `suite-table` makes it again without running anything).
 
 Normally run through bench/suite.sh, which builds the binaries first:
-  python3 bench/suite.py [--split dev|validation|all] [--frames N] [--configs a,b,c] [--out DIR]
-                         [--results DIR] [--jobs N]
-  python3 bench/suite.py table --split dev|validation|all [--results DIR]
-  (env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin;
+  python3 -m dynvo_tools suite [--split dev|validation|all] [--frames N] [--configs a,b,c]
+                               [--out DIR] [--results DIR] [--jobs N]
+  python3 -m dynvo_tools suite-table --split dev|validation|all [--results DIR]
+  (tools/ on PYTHONPATH; env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin;
    DYNVO_SHARED_DIR, default ../shared)
 """
 from __future__ import annotations
 
 import argparse
-import concurrent.futures
 import csv
 import functools
 import json
-import math
 import os
-import shlex
 import statistics
-import subprocess
-import sys
 import time
 from dataclasses import dataclass
-from typing import Callable, Optional, TypeVar
+from typing import Optional
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BIN_DIR = os.environ.get("DYNVO_BIN_DIR") or os.path.join(
-    os.environ.get("DYNVO_BUILD_DIR") or os.path.join(ROOT, "build"), "bin")
-SHARED_DIR = os.environ.get("DYNVO_SHARED_DIR") or os.path.join(ROOT, "..", "shared")
+from .common import (ROOT, ToolError, bin_path, config_path, display_path, log, run_parallel,
+                     run_tool, shared_dir)
+from .evaluation import ATE, RPE_PER_SECOND, EvaluatedRun, RunRequest, run_and_evaluate
 
 # The people of each source: the TUM presets of dynvo-insert-people (articulated photo people in
 # real frames) and the same scenarios of dynvo-synth (the same people in a synthetic room).
@@ -54,6 +47,7 @@ SPLITS = ("dev", "validation")
 INSERT, SYNTH = "inserted", "synthetic"
 VALIDATION_NOTE = "Validation split: reported only, never used to choose a parameter or default."
 NOT_RUN = "not run: shared data absent"
+METRICS = (RPE_PER_SECOND, ATE)
 
 
 @dataclass(frozen=True)
@@ -115,23 +109,6 @@ class RunResult:
     ms_p90: float
 
 
-class SuiteError(Exception):
-    """A failure that stops the suite: which sequence and config, which file, what happened."""
-
-    def __init__(self, what: str, path: str, problem: str) -> None:
-        super().__init__("%s: %s: %s" % (what, display_path(path), problem))
-
-
-def log(message: str) -> None:
-    print("suite: " + message, file=sys.stderr, flush=True)
-
-
-def display_path(path: str) -> str:
-    """Relative to the repository when inside it, else as given."""
-    inside = os.path.relpath(os.path.abspath(path), ROOT)
-    return path if inside.startswith("..") else inside
-
-
 def short_name(real_folder: str) -> str:
     """rgbd_dataset_freiburg1_rpy_head150 -> fr1_rpy_head150."""
     name = os.path.basename(os.path.normpath(real_folder))
@@ -141,11 +118,11 @@ def short_name(real_folder: str) -> str:
 # ---------------------------------------------------------------- sequences
 
 
-def source_rows(source: Source, frames: int, seq_dir: str, shared_dir: str) -> list[RowSpec]:
+def source_rows(source: Source, frames: int, seq_dir: str, shared: str) -> list[RowSpec]:
     """The rows of one source: one per preset, each with its twin."""
     seed = str(source.seed)
     if source.kind == INSERT:
-        real = os.path.join(shared_dir, "data", "tum", source.where)
+        real = os.path.join(shared, "data", "tum", source.where)
         twin = Sequence(short_name(real), real)
         available = os.path.isdir(real)
         made = [(f"{twin.name}_{p}_s{seed}",
@@ -163,10 +140,11 @@ def source_rows(source: Source, frames: int, seq_dir: str, shared_dir: str) -> l
                     twin, available) for name, command in made]
 
 
-def split_rows(split: str, frames: int, out_dir: str, shared_dir: str) -> list[RowSpec]:
+def split_rows(split: str, frames: int, out_dir: str, shared: str) -> list[RowSpec]:
+    """Every row of a split, its generated sequences in OUT/seq."""
     seq_dir = os.path.join(out_dir, "seq")
     return [row for source in SOURCES if source.split == split
-            for row in source_rows(source, frames, seq_dir, shared_dir)]
+            for row in source_rows(source, frames, seq_dir, shared)]
 
 
 def needs_generation(sequence: Sequence) -> bool:
@@ -180,17 +158,18 @@ def needs_generation(sequence: Sequence) -> bool:
         return True
 
 
-def generate(sequence: Sequence, bin_dir: str) -> bool:
-    """Generates the sequence unless it is there as specified; True when it generated it."""
+def generate(sequence: Sequence) -> bool:
+    """Generates the sequence (its generator from common.bin_dir()) unless it is there as
+    specified; True when it generated it."""
     if not needs_generation(sequence):
         return False
     spec_path = os.path.join(sequence.folder, "spec.json")
     if os.path.exists(spec_path):
         os.remove(spec_path)  # no stale spec beside a half-made sequence
-    log("generating %s" % sequence.name)
+    log("suite", "generating %s" % sequence.name)
     program, *arguments = sequence.command
     run_tool("%s (generation)" % sequence.name,
-             [os.path.join(bin_dir, program)] + arguments + ["--out", sequence.folder, "--force"])
+             [bin_path(program)] + arguments + ["--out", sequence.folder, "--force"])
     with open(spec_path, "w") as f:
         json.dump(sequence.spec(), f, indent=2)
         f.write("\n")
@@ -200,132 +179,26 @@ def generate(sequence: Sequence, bin_dir: str) -> bool:
 # ---------------------------------------------------------------- runs
 
 
-def tail(text: str, lines: int = 8) -> str:
-    kept = [line for line in text.splitlines() if line.strip()][-lines:]
-    return "\n".join("  " + line for line in kept) if kept else "  (nothing on stderr)"
+def run_result(run: EvaluatedRun) -> RunResult:
+    """What the suite keeps of an evaluated run."""
+    ms_median, ms_p90 = run.processing_ms()
+    return RunResult(frames=run.frames(), rpe_m_s=run.rmse(RPE_PER_SECOND), ate_m=run.rmse(ATE),
+                     mask=run.mask_quality(), ms_median=ms_median, ms_p90=ms_p90)
 
 
-def run_tool(what: str, command: list[str]) -> str:
-    """Runs command and returns its stdout; a missing program or a non-zero exit is a SuiteError
-    naming what it was for and the program, with the end of its stderr."""
-    program = command[0]
-    if not os.access(program, os.X_OK):
-        raise SuiteError(what, program, "not found or not executable (bash bench/suite.sh builds it)")
-    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise SuiteError(what, program, "exited with code %d: %s\nthe end of its stderr:\n%s" % (
-            done.returncode, shlex.join(command), tail(done.stderr)))
-    return done.stdout
-
-
-def read_json(what: str, path: str) -> dict:
-    try:
-        with open(path) as f:
-            data = json.load(f)
-    except OSError as error:
-        raise SuiteError(what, path, "cannot read: %s" % error.strerror) from None
-    except ValueError as error:
-        raise SuiteError(what, path, "not valid JSON (%s)" % error) from None
-    if not isinstance(data, dict):
-        raise SuiteError(what, path, "not a JSON object")
-    return data
-
-
-def json_number(what: str, path: str, data: dict, key: str) -> float:
-    """The number at a dotted key ("translational_error_m.rmse") of data read from path."""
-    value = data
-    for part in key.split("."):
-        value = value.get(part) if isinstance(value, dict) else None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise SuiteError(what, path, "no finite number at %s" % key)
-    return float(value)
-
-
-def mask_quality(what: str, path: str, info: dict) -> Optional[dict[str, float]]:
-    """run.json's mask_quality: None when missing or null (no mask, or no masks/ to compare)."""
-    if info.get("mask_quality") is None:
-        return None
-    return {key: json_number(what, path, info, "mask_quality." + key)
-            for key in ("precision", "recall", "iou")}
-
-
-def percentile(values: list[float], q: float) -> float:
-    """The q-th percentile, linear between the closest ranks (numpy's default)."""
-    ordered = sorted(values)
-    position = (len(ordered) - 1) * q / 100.0
-    low = math.floor(position)
-    high = min(low + 1, len(ordered) - 1)
-    return ordered[low] + (ordered[high] - ordered[low]) * (position - low)
-
-
-def timing_stats(what: str, path: str) -> tuple[float, float]:
-    """Median and p90 of the processing_ms column of a run's timing.csv."""
-    try:
-        with open(path, newline="") as f:
-            values = [float(row["processing_ms"]) for row in csv.DictReader(f)]
-    except OSError as error:
-        raise SuiteError(what, path, "cannot read: %s" % error.strerror) from None
-    except (KeyError, TypeError, ValueError):
-        raise SuiteError(what, path, "no processing_ms column of numbers") from None
-    if not values:
-        raise SuiteError(what, path, "no frames")
-    return statistics.median(values), percentile(values, 90)
-
-
-def evaluate(what: str, bin_dir: str, metric: str, sequence: Sequence, run_dir: str) -> dict:
-    """`rpe`/`ate GT TRAJ --json`, its output kept in RUN_DIR/<metric>.json and read back."""
-    output = os.path.join(run_dir, metric + ".json")
-    text = run_tool(what, [os.path.join(bin_dir, metric),
-                           os.path.join(sequence.folder, "groundtruth.txt"),
-                           os.path.join(run_dir, "trajectory.txt"), "--json"])
-    with open(output, "w") as f:
-        f.write(text)
-    return read_json(what, output)
-
-
-def run_and_evaluate(sequence: Sequence, config: str, out_dir: str, bin_dir: str) -> RunResult:
-    """The one shared step: run a config on a sequence, then evaluate the run."""
-    what = "%s %s" % (sequence.name, config)
-    run_dir = os.path.join(out_dir, "runs", sequence.name, config)
-    run_tool(what, [os.path.join(bin_dir, "dynvo-cli"), "run", "--quiet", "--force",
-                    "--dataset", sequence.folder,
-                    "--config", os.path.join(ROOT, "configs", config + ".json"), "--out", run_dir])
-    rpe = evaluate(what, bin_dir, "rpe", sequence, run_dir)
-    ate = evaluate(what, bin_dir, "ate", sequence, run_dir)
-    run_json = os.path.join(run_dir, "run.json")
-    info = read_json(what, run_json)
-    ms_median, ms_p90 = timing_stats(what, os.path.join(run_dir, "timing.csv"))
-    return RunResult(
-        frames=int(json_number(what, run_json, info, "dataset.frames_to_process")),
-        rpe_m_s=json_number(what, os.path.join(run_dir, "rpe.json"), rpe, "translational_error_m.rmse"),
-        ate_m=json_number(what, os.path.join(run_dir, "ate.json"), ate,
-                          "absolute_translational_error_m.rmse"),
-        mask=mask_quality(what, run_json, info), ms_median=ms_median, ms_p90=ms_p90)
-
-
-T = TypeVar("T")
-
-
-def run_parallel(tasks: list[Callable[[], T]], jobs: int) -> list[T]:
-    """The tasks' results in their order, up to jobs at a time. A failure cancels what has not
-    started; once the running tasks are over, the first failure in task order is raised."""
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = [pool.submit(task) for task in tasks]
-        concurrent.futures.wait(futures, return_when=concurrent.futures.FIRST_EXCEPTION)
-        for future in futures:
-            future.cancel()  # only those not started
-        concurrent.futures.wait(futures)
-        for future in futures:
-            if not future.cancelled() and future.exception():
-                raise future.exception()
-        return [future.result() for future in futures]
+def run_sequence(sequence: Sequence, config: str, out_dir: str) -> RunResult:
+    """Runs configs/CONFIG.json on a sequence into OUT/runs/SEQUENCE/CONFIG and evaluates it
+    (per-second RPE and ATE)."""
+    request = RunRequest(sequence.folder, os.path.join(out_dir, "runs", sequence.name, config),
+                         config_path(config))
+    return run_result(run_and_evaluate(request, METRICS, "%s %s" % (sequence.name, config)))
 
 
 # ---------------------------------------------------------------- results CSV
 
-CSV_COLUMNS = ["split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
+CSV_COLUMNS = ("split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
                "twin_rpe_m_s", "ratio", "ate_m", "mask_precision", "mask_recall", "mask_iou",
-               "ms_median", "ms_p90"]
+               "ms_median", "ms_p90")
 MASK_KEYS = ("precision", "recall", "iou")
 
 
@@ -354,25 +227,31 @@ def result_row(row: RowSpec, config: str, result: Optional[RunResult],
 
 
 def write_csv(path: str, rows: list[dict[str, str]]) -> None:
+    """The results CSV of one split, CSV_COLUMNS in order."""
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS, lineterminator="\n")
         writer.writeheader()
         writer.writerows(rows)
 
 
+def table_error(path: str, problem: str) -> ToolError:
+    """A failure of making the table from the CSV at path."""
+    return ToolError("%s: %s" % (display_path(path), problem))
+
+
 def read_results(path: str) -> list[dict[str, str]]:
-    what = "table"
+    """The rows of a results CSV; a ToolError when unreadable, without a column, or empty."""
     try:
         with open(path, newline="") as f:
             reader = csv.DictReader(f)
             rows = list(reader)
             missing = [c for c in CSV_COLUMNS if c not in (reader.fieldnames or [])]
     except OSError as error:
-        raise SuiteError(what, path, "cannot read (%s): run the suite first" % error.strerror) from None
+        raise table_error(path, "cannot read (%s): run the suite first" % error.strerror) from None
     if missing:
-        raise SuiteError(what, path, "no column %s" % ", ".join(missing))
+        raise table_error(path, "no column %s" % ", ".join(missing))
     if not rows:
-        raise SuiteError(what, path, "no rows")
+        raise table_error(path, "no rows")
     return rows
 
 
@@ -386,13 +265,14 @@ def csv_number(row: dict[str, str], key: str, path: str) -> Optional[float]:
     try:
         return float(row[key])
     except ValueError:
-        raise SuiteError("table", path, "%s %s: %s is not a number: %r" % (
+        raise table_error(path, "%s %s: %s is not a number: %r" % (
             row["sequence"], row["config"], key, row[key])) from None
 
 
 def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
+    """The paragraphs above a split's table: what each column is, the frames, the split's note."""
     synthetic = sorted({r["frames"] for r in rows if r["status"] == "ok" and r["kind"] == SYNTH}, key=int)
-    real = {}
+    real: dict[str, set[str]] = {}
     for r in rows:
         if r["status"] == "ok" and r["kind"] == INSERT:
             real.setdefault(r["twin"], set()).add(r["frames"])
@@ -437,13 +317,15 @@ def sequence_cells(by_config: dict[str, dict[str, str]], configs: list[str], mas
     cells += [fmt(num(c, "ate_m"), "%.4f") for c in configs]
     for c in masked:
         values = [num(c, "mask_" + key) for key in ("recall", "precision", "iou")]
-        cells.append("-" if None in values else "/".join("%.2f" % v for v in values))
+        known = [v for v in values if v is not None]
+        cells.append("/".join("%.2f" % v for v in known) if len(known) == len(values) else "-")
     cells += ["%s/%s" % (fmt(num(c, "ms_median"), "%.1f"), fmt(num(c, "ms_p90"), "%.1f"))
               for c in configs]
     return cells
 
 
 def table_lines(rows: list[dict[str, str]], configs: list[str], path: str) -> list[str]:
+    """The Markdown table of a split: one row per sequence, then the median ratio per config."""
     masked = masked_configs(rows, configs)
     header = (["sequence", "twin"] + ["%s RPE m/s (ratio)" % c for c in configs]
               + ["%s ATE m" % c for c in configs] + ["%s mask R/P/IoU" % c for c in masked]
@@ -476,33 +358,93 @@ def write_markdown(csv_path: str, md_path: str) -> None:
     configs = list(dict.fromkeys(r["config"] for r in rows))
     text = [caption(split, rows, configs), ""] + table_lines(rows, configs, csv_path) + [
         "", "Generated by `bash bench/suite.sh --split %s`; the table alone again from %s by"
-        " `python3 bench/suite.py table --split %s`." % (split, os.path.basename(csv_path), split)]
+        " `bash bench/suite.sh table --split %s`." % (split, os.path.basename(csv_path), split)]
     with open(md_path, "w") as f:
         f.write("\n".join(text) + "\n")
 
 
-# ---------------------------------------------------------------- command line
+# ---------------------------------------------------------------- commands
+
+
+def splits_of(args: argparse.Namespace) -> tuple[str, ...]:
+    """The splits --split names."""
+    return SPLITS if args.split == "all" else (args.split,)
+
+
+def run_suite(args: argparse.Namespace) -> int:
+    """Generates the splits' sequences, runs and evaluates every config on each, and writes
+    RESULTS/suite_<split>.csv and .md."""
+    start = time.monotonic()
+    splits = splits_of(args)
+    out_dir = os.path.abspath(args.out)
+    shared = shared_dir()
+    rows = {s: split_rows(s, args.frames, out_dir, shared) for s in splits}
+    ready = [row for split in splits for row in rows[split] if row.available]
+    if len(ready) < sum(len(r) for r in rows.values()):
+        log("suite", "%s: absent: the rows with people inserted into real frames are not run"
+            % os.path.join(shared, "data", "tum"))
+    to_make = list(dict.fromkeys(s for row in ready for s in (row.sequence, row.twin) if s.command))
+    made = run_parallel([functools.partial(generate, s) for s in to_make], args.jobs)
+    log("suite", "%d sequences generated, %d kept" % (sum(made), len(made) - sum(made)))
+    runs = list(dict.fromkeys((s, c) for row in ready for s in (row.sequence, row.twin)
+                              for c in args.configs))
+    log("suite", "%d runs, %d at a time" % (len(runs), args.jobs))
+    results = dict(zip(runs, run_parallel(
+        [functools.partial(run_sequence, s, c, out_dir) for s, c in runs], args.jobs)))
+    os.makedirs(args.results, exist_ok=True)
+    for split in splits:
+        csv_path = os.path.join(args.results, "suite_%s.csv" % split)
+        write_csv(csv_path, [result_row(row, c, results.get((row.sequence, c)),
+                                        results.get((row.twin, c)))
+                             for row in rows[split] for c in args.configs])
+        write_markdown(csv_path, csv_path[:-4] + ".md")
+        log("suite", "wrote %s and .md" % display_path(csv_path))
+    log("suite", "done in %.0f s" % (time.monotonic() - start))
+    return 0
+
+
+def run_table(args: argparse.Namespace) -> int:
+    """Writes RESULTS/suite_<split>.md again from RESULTS/suite_<split>.csv alone."""
+    for split in splits_of(args):
+        csv_path = os.path.join(args.results, "suite_%s.csv" % split)
+        write_markdown(csv_path, csv_path[:-4] + ".md")
+        log("suite-table", "wrote %s" % display_path(csv_path[:-4] + ".md"))
+    return 0
+
+
+def checked_run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+    """The `suite` command after the checks of its options (argparse errors of parser)."""
+    if args.frames < 2:
+        parser.error("--frames must be at least 2")
+    if args.jobs < 1:
+        parser.error("--jobs must be at least 1")
+    for config in args.configs:
+        if not os.path.isfile(config_path(config)):
+            parser.error("--configs: no configs/%s.json" % config)
+    return run_suite(args)
 
 
 def comma_list(text: str) -> tuple[str, ...]:
+    """The items of a comma-separated list (argparse type)."""
     items = tuple(item.strip() for item in text.split(",") if item.strip())
     if not items:
         raise argparse.ArgumentTypeError("expected a comma-separated list, got %r" % text)
     return items
 
 
-def parse_args(argv: list[str]) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(prog="suite", description=__doc__.split("\n\n")[0])
+def add_split_options(parser: argparse.ArgumentParser) -> None:
+    """--split and --results, shared by `suite` and `suite-table`."""
     parser.add_argument("--split", choices=SPLITS + ("all",), default="all",
                         help="which split (default: all)")
     parser.add_argument("--results", default=os.path.join(ROOT, "bench", "results"), metavar="DIR",
                         help="where suite_<split>.csv and .md go (default: bench/results)")
-    if argv[:1] == ["table"]:
-        parser.prog = "suite table"
-        parser.description = "Writes suite_<split>.md again from suite_<split>.csv alone."
-        args = parser.parse_args(argv[1:])
-        args.command = "table"
-        return args
+
+
+def add_parser(commands: argparse._SubParsersAction) -> None:
+    """The `suite` command (the runs) and `suite-table` (the Markdown again from the CSV)."""
+    parser = commands.add_parser("suite", help="run the benchmark suite's splits",
+                                 description=(__doc__ or "").split("\n\n")[0])
+    add_split_options(parser)
     parser.add_argument("--frames", type=int, default=300, metavar="N",
                         help="frames of each synthetic sequence (default 300; the sequences with"
                              " people inserted have all frames of their real folder)")
@@ -512,61 +454,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         help="generated sequences and runs (default: out/bench/suite)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, metavar="N",
                         help="runs at the same time (default: the number of cores)")
-    args = parser.parse_args(argv)
-    args.command = "run"
-    if args.frames < 2:
-        parser.error("--frames must be at least 2")
-    if args.jobs < 1:
-        parser.error("--jobs must be at least 1")
-    for config in args.configs:
-        if not os.path.isfile(os.path.join(ROOT, "configs", config + ".json")):
-            parser.error("--configs: no configs/%s.json" % config)
-    return args
-
-
-def run_suite(args: argparse.Namespace, splits: tuple[str, ...]) -> None:
-    start = time.monotonic()
-    out_dir = os.path.abspath(args.out)
-    rows = {s: split_rows(s, args.frames, out_dir, SHARED_DIR) for s in splits}
-    ready = [row for split in splits for row in rows[split] if row.available]
-    if len(ready) < sum(len(r) for r in rows.values()):
-        log("%s: absent: the rows with people inserted into real frames are not run"
-            % os.path.join(SHARED_DIR, "data", "tum"))
-    to_make = list(dict.fromkeys(s for row in ready for s in (row.sequence, row.twin) if s.command))
-    made = run_parallel([functools.partial(generate, s, BIN_DIR) for s in to_make], args.jobs)
-    log("%d sequences generated, %d kept" % (sum(made), len(made) - sum(made)))
-    runs = list(dict.fromkeys((s, c) for row in ready for s in (row.sequence, row.twin)
-                              for c in args.configs))
-    log("%d runs, %d at a time" % (len(runs), args.jobs))
-    results = dict(zip(runs, run_parallel(
-        [functools.partial(run_and_evaluate, s, c, out_dir, BIN_DIR) for s, c in runs], args.jobs)))
-    os.makedirs(args.results, exist_ok=True)
-    for split in splits:
-        csv_path = os.path.join(args.results, "suite_%s.csv" % split)
-        write_csv(csv_path, [result_row(row, c, results.get((row.sequence, c)),
-                                        results.get((row.twin, c)))
-                             for row in rows[split] for c in args.configs])
-        write_markdown(csv_path, csv_path[:-4] + ".md")
-        log("wrote %s and .md" % display_path(csv_path))
-    log("done in %.0f s" % (time.monotonic() - start))
-
-
-def main(argv: list[str]) -> int:
-    args = parse_args(argv)
-    splits = SPLITS if args.split == "all" else (args.split,)
-    try:
-        if args.command == "table":
-            for split in splits:
-                csv_path = os.path.join(args.results, "suite_%s.csv" % split)
-                write_markdown(csv_path, csv_path[:-4] + ".md")
-                log("wrote %s" % display_path(csv_path[:-4] + ".md"))
-        else:
-            run_suite(args, splits)
-    except SuiteError as error:
-        print("suite: error: %s" % error, file=sys.stderr)
-        return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    parser.set_defaults(run=functools.partial(checked_run, parser))
+    table = commands.add_parser(
+        "suite-table", help="the benchmark suite's Markdown tables again from their CSVs",
+        description="Writes suite_<split>.md again from suite_<split>.csv alone.")
+    add_split_options(table)
+    table.set_defaults(run=run_table)

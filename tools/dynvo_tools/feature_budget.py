@@ -1,0 +1,118 @@
+"""How much a sequence's accuracy depends on the ORB budget: configs run with
+features.num_features set to each budget, each over RANSAC seeds 1..N (homography.seed and
+tracking.pose.seed); per-second translational and rotational RPE and per-frame RPE, with the
+median, min and max over the seeds. Writes RESULTS/feature_budget.csv and .md."""
+from __future__ import annotations
+
+import argparse
+import csv
+import functools
+import os
+import statistics
+
+from .common import ROOT, ToolError, config_path, display_path, json_number, log, run_parallel, shared_dir
+from .evaluation import RPE_PER_FRAME, RPE_PER_SECOND, RunRequest, run_and_evaluate
+
+CSV_COLUMNS = ("config", "num_features", "seed", "rpe_second_m", "rpe_second_deg", "rpe_frame_m")
+DEFAULT_SEQUENCE = "rgbd_dataset_freiburg1_rpy_head150"
+
+
+def positive_list(text: str) -> tuple[int, ...]:
+    """"900,950,1000" -> (900, 950, 1000); every item a positive integer."""
+    try:
+        values = tuple(int(item) for item in text.split(",") if item.strip())
+    except ValueError:
+        values = ()
+    if not values or min(values) < 1:
+        raise argparse.ArgumentTypeError("expected comma-separated positive integers, got %r" % text)
+    return values
+
+
+def add_parser(commands: argparse._SubParsersAction) -> None:
+    """The `feature-budget` command."""
+    parser = commands.add_parser("feature-budget", help="accuracy against the ORB budget and RANSAC seeds",
+                                 description=__doc__)
+    parser.add_argument("--dataset", metavar="DIR", help="TUM sequence with groundtruth.txt (default: %s in the"
+                        " shared data)" % DEFAULT_SEQUENCE)
+    parser.add_argument("--budgets", type=positive_list, default=(900, 950, 1000, 1050, 1100), metavar="N,N,...",
+                        help="features.num_features values (default 900,950,1000,1050,1100)")
+    parser.add_argument("--seeds", type=int, default=10, metavar="N", help="RANSAC seeds 1..N (default 10)")
+    parser.add_argument("--configs", default="paper,baseline", metavar="A,B",
+                        help="configs/<name>.json to run (default paper,baseline)")
+    parser.add_argument("--out", default=os.path.join(ROOT, "out", "bench", "feature_budget"), metavar="DIR",
+                        help="the runs (default out/bench/feature_budget)")
+    parser.add_argument("--results", default=os.path.join(ROOT, "bench", "results"), metavar="DIR",
+                        help="where feature_budget.csv and .md go (default bench/results)")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, metavar="N", help="runs at a time")
+    parser.set_defaults(run=run)
+
+
+def one_run(dataset: str, out: str, config: str, budget: int, seed: int) -> dict[str, object]:
+    """One config at one budget and seed, run and evaluated: a CSV row."""
+    request = RunRequest(dataset, os.path.join(out, "%s_%d_seed%d" % (config, budget, seed)), config_path(config),
+                         ("features.num_features=%d" % budget, "homography.seed=%d" % seed,
+                          "tracking.pose.seed=%d" % seed))
+    evaluated = run_and_evaluate(request, (RPE_PER_SECOND, RPE_PER_FRAME), "%s %d seed %d" % (config, budget, seed))
+    rotation = json_number(request.run_dir, os.path.join(request.run_dir, "rpe.json"), evaluated.reports["rpe"],
+                           "rotational_error_deg.rmse")
+    return {"config": config, "num_features": budget, "seed": seed,
+            "rpe_second_m": evaluated.rmse(RPE_PER_SECOND), "rpe_second_deg": rotation,
+            "rpe_frame_m": evaluated.rmse(RPE_PER_FRAME)}
+
+
+def markdown(rows: list[dict[str, object]], dataset: str, configs: list[str], seeds: int) -> str:
+    """The table: per budget, each config's medians over the seeds, and the first config against the last."""
+    def values(config: str, budget: object, key: str) -> list[float]:
+        return [float(r[key]) for r in rows if r["config"] == config and r["num_features"] == budget]  # type: ignore
+
+    def cell(config: str, budget: object) -> str:
+        second = values(config, budget, "rpe_second_m")
+        return "%.4f [%.4f, %.4f] | %.2f | %.4f" % (
+            statistics.median(second), min(second), max(second),
+            statistics.median(values(config, budget, "rpe_second_deg")),
+            statistics.median(values(config, budget, "rpe_frame_m")))
+
+    header = ["num_features"] + ["%s, per s (m/s) | %s, per s (deg/s) | %s, per frame (m)" % (c, c, c)
+                                 for c in configs]
+    first, last = configs[0], configs[-1]
+    header.append("%s vs %s, per s" % (first, last))
+    lines = [
+        "%s with `--set features.num_features=N`, over RANSAC seeds 1-%d (`--set homography.seed=S --set"
+        " tracking.pose.seed=S`): per-second translational RPE RMSE, median [min, max] over the seeds (m/s);"
+        " per-second rotational RPE RMSE, median (deg/s); per-frame translational RPE RMSE, median (m)."
+        " Generated by `bash bench/feature_budget.sh`." % (os.path.basename(dataset.rstrip("/")), seeds), "",
+        "| " + " | ".join(header) + " |", "|" + "---|" * (2 + 3 * len(configs))]
+    for budget in dict.fromkeys(r["num_features"] for r in rows):
+        a = statistics.median(values(first, budget, "rpe_second_m"))
+        b = statistics.median(values(last, budget, "rpe_second_m"))
+        lines.append("| %s | %s | %+.1f%% |" % (budget, " | ".join(cell(c, budget) for c in configs),
+                                                100.0 * (a - b) / b))
+    return "\n".join(lines) + "\n"
+
+
+def run(args: argparse.Namespace) -> int:
+    """Runs every config x budget x seed, then writes the CSV and the Markdown."""
+    dataset = os.path.abspath(args.dataset or os.path.join(shared_dir(), "data", "tum", DEFAULT_SEQUENCE))
+    if not os.path.isfile(os.path.join(dataset, "groundtruth.txt")):
+        raise ToolError("%s: no TUM sequence with groundtruth.txt there (give --dataset, or set DYNVO_SHARED_DIR"
+                        " to the folder holding data/tum)" % display_path(dataset))
+    configs = [c.strip() for c in args.configs.split(",") if c.strip()]
+    for config in configs:
+        if not os.path.isfile(config_path(config)):
+            raise ToolError("--configs: no configs/%s.json" % config)
+    if args.seeds < 1 or args.jobs < 1:
+        raise ToolError("--seeds and --jobs must be at least 1")
+    tasks = [functools.partial(one_run, dataset, os.path.abspath(args.out), c, b, s)
+             for b in args.budgets for c in configs for s in range(1, args.seeds + 1)]
+    log("feature-budget", "%d runs, %d at a time" % (len(tasks), args.jobs))
+    rows = run_parallel(tasks, args.jobs)
+    os.makedirs(args.results, exist_ok=True)
+    with open(os.path.join(args.results, "feature_budget.csv"), "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+    text = markdown(rows, dataset, configs, args.seeds)
+    with open(os.path.join(args.results, "feature_budget.md"), "w") as f:
+        f.write(text)
+    print(text, end="")
+    return 0
