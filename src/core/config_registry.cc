@@ -80,6 +80,21 @@ void ConfigRegistry::Bind(const std::string& key, std::string* field, const std:
             }});
 }
 
+void ConfigRegistry::Bind(const std::string& key, std::vector<int>* field, const std::string& help) {
+  Add(key, {"list of integers", help, [field] { return nlohmann::json(*field); },
+            [field](const nlohmann::json& v, const std::string& where) {
+              if (!v.is_array()) TypeError(where, "a list of integers", v);
+              std::vector<int> values;
+              for (const nlohmann::json& item : v) {
+                const long long x = IntegerValue(item, where);
+                if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
+                  TypeError(where, "a list of integers in the int range", v);
+                values.push_back(static_cast<int>(x));
+              }
+              *field = values;
+            }});
+}
+
 void ConfigRegistry::BindChoice(const std::string& key, std::vector<std::string> choices,
                                 std::function<std::string()> get, std::function<void(const std::string&)> set,
                                 const std::string& help) {

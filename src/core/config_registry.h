@@ -21,6 +21,8 @@ class ConfigRegistry {
   void Bind(const std::string& key, double* field, const std::string& help);
   void Bind(const std::string& key, bool* field, const std::string& help);
   void Bind(const std::string& key, std::string* field, const std::string& help);
+  // A JSON array of integers ("detector.classes": [0, 2]).
+  void Bind(const std::string& key, std::vector<int>* field, const std::string& help);
   // An enum-like field stored by `set` after parsing a string, read back with `get`.
   void BindChoice(const std::string& key, std::vector<std::string> choices, std::function<std::string()> get,
                   std::function<void(const std::string&)> set, const std::string& help);

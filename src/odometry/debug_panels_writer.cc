@@ -67,6 +67,21 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const std::vector<DebugFeature>& featur
   return canvas;
 }
 
+// Frame t with the detector's boxes (score above each) and the people's mask tinted red.
+cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
+  cv::Mat canvas = bgr.clone();
+  if (!mask.mask.empty()) canvas.setTo(cv::Scalar(0, 0, 255), mask.mask);
+  cv::addWeighted(bgr, 0.6, canvas, 0.4, 0.0, canvas);
+  char label[32];
+  for (const Detection& person : mask.people) {
+    cv::rectangle(canvas, person.box, cv::Scalar(0, 255, 255), 2);
+    std::snprintf(label, sizeof(label), "%.2f", person.score);
+    cv::putText(canvas, label, cv::Point(person.box.tl()) + cv::Point(2, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(0, 255, 255), 1);
+  }
+  return canvas;
+}
+
 }  // namespace
 
 std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const TrackingResult& tracking) {
@@ -102,10 +117,14 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
   const std::string& dir = dir_;
   char prefix[64];
   std::snprintf(prefix, sizeof(prefix), "/frame_%06zu_", frame.index);
+  const bool detected = mask.status == MaskStatus::kDetected;  // the detector's boxes instead of the compensation
   const std::vector<std::pair<std::string, cv::Mat>> named = {
-      {"compensated", mask.compensated},   {"difference", mask.difference},
-      {"forward_mask", mask.forward_mask}, {"backward_mask", mask.backward_mask},
-      {"fused_mask", mask.mask},           {"features", DrawFeatures(current_bgr, features)}};
+      {detected ? "detections" : "compensated", detected ? DrawDetections(current_bgr, mask) : mask.compensated},
+      {"difference", mask.difference},
+      {"forward_mask", mask.forward_mask},
+      {"backward_mask", mask.backward_mask},
+      {"fused_mask", mask.mask},
+      {"features", DrawFeatures(current_bgr, features)}};
   std::vector<cv::Mat> tiles;
   for (const auto& [name, image] : named) {
     if (!image.empty()) Save(dir + prefix + name + ".png", image);

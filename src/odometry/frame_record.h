@@ -47,6 +47,7 @@ struct FrameRecord {
   int num_inliers = 0;
   bool keyframe = false;
   std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
+  int people = -1;                         // people the detector found (-1: no detector)
 };
 
 }  // namespace dynvo

@@ -32,6 +32,9 @@ void OdometryConfig::Check() const {
   klt.Check();
   homography.Check();
   dynamic_mask.Check();
+  detector.Check();
+  if (mask_source == MaskSourceKind::kDetector && detector.model.empty())
+    throw InputError("mask_source \"detector\" needs detector.model (a YOLO model file: tools/fetch_models.sh)");
   depth_change.Check();
   map_occlusion.Check();
   depth_trim.Check();
@@ -53,6 +56,8 @@ std::string ToString(MaskSourceKind kind) {
       return "difference";
     case MaskSourceKind::kGroundTruth:
       return "ground_truth";
+    case MaskSourceKind::kDetector:
+      return "detector";
   }
   return "difference";
 }
@@ -160,17 +165,19 @@ void BindConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   BindConfigKeys("dataset", &c->dataset, r);
   BindCameraKeys(&c->camera, r);
   r->BindChoice(
-      "mask_source", {"none", "difference", "ground_truth"}, [c] { return ToString(c->mask_source); },
+      "mask_source", {"none", "difference", "ground_truth", "detector"}, [c] { return ToString(c->mask_source); },
       [c](const std::string& s) {
         c->mask_source = s == "none"           ? MaskSourceKind::kNone
                          : s == "ground_truth" ? MaskSourceKind::kGroundTruth
+                         : s == "detector"     ? MaskSourceKind::kDetector
                                                : MaskSourceKind::kDifference;
       },
       "none = the baseline (no dynamic handling, everything else identical); difference = the paper's "
-      "detector; ground_truth = the sequence's masks (masks.txt, as generated sequences have): a perfect "
-      "mask, to measure what mask errors cost");
+      "frame differencing; ground_truth = the sequence's masks (masks.txt, as generated sequences have): a perfect "
+      "mask, to measure what mask errors cost; detector = the YOLO person detector of detector.*, every person masked");
   BindConfigKeys("homography", &c->homography, r);
   BindConfigKeys("dynamic_mask", &c->dynamic_mask, r);
+  BindConfigKeys("detector", &c->detector, r);
   BindConfigKeys("depth_change", &c->depth_change, r);
   BindConfigKeys("map_occlusion", &c->map_occlusion, r);
   BindConfigKeys("depth_trim", &c->depth_trim, r);

@@ -12,6 +12,7 @@
 
 #include "core/camera.h"
 #include "dataset/tum_dataset.h"
+#include "detection/detector_options.h"
 #include "dynamic_mask/depth_change.h"
 #include "dynamic_mask/depth_trim.h"
 #include "dynamic_mask/dynamic_mask_options.h"
@@ -39,9 +40,10 @@ enum class MaskSourceKind {
   kDifference,   // the paper's detector: motion-compensated frame differencing
   kGroundTruth,  // the sequence's ground-truth masks (generated sequences have them): what a
                  // perfect detector would give, to tell the mask's errors from the tracker's
+  kDetector,     // the YOLO person detector (the second paper): every person found is masked
 };
 
-// "none", "difference", "ground_truth".
+// "none", "difference", "ground_truth", "detector".
 std::string ToString(MaskSourceKind kind);
 
 struct RunOptions {
@@ -60,6 +62,7 @@ struct OdometryConfig {
   KltOptions klt;                                            // the KLT tracks of the ego-motion (no keys)
   HomographyOptions homography;                              // "homography.*": the ego-motion homography
   DynamicMaskOptions dynamic_mask;                           // "dynamic_mask.*": the differencing source
+  DetectorOptions detector;                                  // "detector.*": the detector source
   // Refinements of the differencing mask (not applied to the other sources):
   DepthChangeOptions depth_change;    // "depth_change.*"
   MapOcclusionOptions map_occlusion;  // "map_occlusion.*"

@@ -6,6 +6,7 @@
 #include "core/stopwatch.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "pipeline/depth_change_refinement.h"
+#include "pipeline/detector_mask_source.h"
 #include "pipeline/differencing_mask_source.h"
 #include "pipeline/static_map_refinement.h"
 #include "pipeline/truth_mask_source.h"
@@ -17,6 +18,9 @@ std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const I
   if (config.mask_source == MaskSourceKind::kNone) return std::make_unique<NoMaskSource>();
   if (config.mask_source == MaskSourceKind::kGroundTruth)
     return std::make_unique<TruthMaskSource>(config.klt, config.homography, config.features.refill_from_background);
+  if (config.mask_source == MaskSourceKind::kDetector)
+    return std::make_unique<DetectorMaskSource>(config.detector, config.klt, config.homography,
+                                                config.features.refill_from_background, executor);
   return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, area, executor);
 }
 
@@ -86,6 +90,7 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
                      : mask.status == MaskStatus::kFailed   ? mask.failure
                                                             : "";
   record.dynamic_ratio = mask.dynamic_ratio;
+  if (mask.status == MaskStatus::kDetected) record.people = static_cast<int>(mask.people.size());
   record.mask_threshold = mask.threshold;
   record.times.dynamic_mask_ms = mask.ms + stages.refinement_upkeep_ms;
   const FeatureSplit& split = stages.features.split;

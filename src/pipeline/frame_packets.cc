@@ -16,8 +16,15 @@ std::string ToString(MaskStatus status) {
       return "computed";
     case MaskStatus::kGiven:
       return "given";
+    case MaskStatus::kDetected:
+      return "detected";
   }
   return "unknown";
+}
+
+void MaskPacket::SetMotion(const std::optional<Eigen::Matrix3d>& motion) {
+  has_motion = motion.has_value();
+  current_from_previous = motion.value_or(Eigen::Matrix3d::Identity());
 }
 
 void MaskPacket::Join(const cv::Mat& region) {

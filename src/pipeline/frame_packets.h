@@ -4,11 +4,14 @@
 // and the mapper's MappingPacket, gathered in a FrameOutput that observers (debug panels, mask
 // quality) read.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "detection/yolo_detector.h"
 #include "features/feature_filter.h"
 #include "mapping/local_mapper.h"
 #include "tracking/frame_tracker.h"
@@ -22,19 +25,21 @@ enum class MaskStatus {
   kFailed,      // differencing: no mask this frame (MaskPacket::failure says why)
   kComputed,    // differencing gave a mask
   kGiven,       // the sequence's ground-truth mask
+  kDetected,    // the person detector ran: its people's masks (empty when it found no one)
 };
 
-// "off", "first_frame", "failed", "computed", "given".
+// "off", "first_frame", "failed", "computed", "given", "detected".
 std::string ToString(MaskStatus status);
 
 // The dynamic mask of frame `frame`: from its source, then through the mask refinements.
 struct MaskPacket {
   size_t frame = 0;
   MaskStatus status = MaskStatus::kOff;
-  std::string failure;         // kFailed: the detector's reason
-  cv::Mat mask;                // CV_8UC1, 255 = dynamic; empty = no mask
-  double dynamic_ratio = 0.0;  // share of `mask`'s pixels
-  int threshold = -1;          // grey level the forward difference was binarised at (kComputed)
+  std::string failure;            // kFailed: the detector's reason
+  cv::Mat mask;                   // CV_8UC1, 255 = dynamic; empty = no mask
+  double dynamic_ratio = 0.0;     // share of `mask`'s pixels
+  int threshold = -1;             // grey level the forward difference was binarised at (kComputed)
+  std::vector<Detection> people;  // kDetected: the detector's boxes, best first
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;
@@ -46,7 +51,11 @@ struct MaskPacket {
   cv::Mat change_seeds;                             // the depth change carried into frame t: seeds of the map occlusion
   cv::Mat map_occlusion_candidates, map_occlusion;  // the carried map occlusion; what joined
 
-  bool ok() const { return status == MaskStatus::kComputed || status == MaskStatus::kGiven; }
+  bool ok() const {
+    return status == MaskStatus::kComputed || status == MaskStatus::kGiven || status == MaskStatus::kDetected;
+  }
+  // has_motion and current_from_previous from an estimate (nullopt: no motion known).
+  void SetMotion(const std::optional<Eigen::Matrix3d>& motion);
   // Adds `region` (same size, CV_8UC1) to the mask; marks the mask refined unless it is empty.
   void Join(const cv::Mat& region);
 };

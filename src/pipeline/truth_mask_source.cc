@@ -21,8 +21,9 @@ void CheckTruthMask(const RgbdFrame& frame, const cv::Mat& mask) {
 
 }  // namespace
 
-TruthMaskSource::TruthMaskSource(const KltOptions& klt, const HomographyOptions& homography, bool estimate_motion)
-    : klt_(klt), homography_(homography), estimate_motion_(estimate_motion) {}
+TruthMaskSource::TruthMaskSource(const KltOptions& klt, const HomographyOptions& homography, bool estimate_motion) {
+  if (estimate_motion) motion_.emplace(klt, homography);
+}
 
 MaskPacket TruthMaskSource::Compute(const MaskSourceInput& input) {
   const RgbdFrame& frame = input.frame;
@@ -30,18 +31,7 @@ MaskPacket TruthMaskSource::Compute(const MaskSourceInput& input) {
   const auto start = SteadyClock::now();
   MaskPacket packet;
   packet.frame = frame.index;
-  if (estimate_motion_) {
-    // Each frame's pyramid is built once and kept for the next call, as the detector does.
-    const TrackingPyramid current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
-    if (!previous_pyramid_.empty()) {
-      const PointTracks tracks = TrackPoints(previous_pyramid_, current_pyramid,
-                                             DetectCorners(previous_pyramid_, klt_, input.previous_mask), klt_);
-      const HomographyEstimate h = EstimateHomography(tracks.previous, tracks.current, homography_);
-      packet.has_motion = h.ok;
-      packet.current_from_previous = h.current_from_previous;
-    }
-    previous_pyramid_ = current_pyramid;
-  }
+  if (motion_) packet.SetMotion(motion_->Next(frame.gray, input.previous_mask));
   packet.status = MaskStatus::kGiven;
   packet.mask = input.truth_mask != 0;
   packet.dynamic_ratio = DynamicRatio(packet.mask);

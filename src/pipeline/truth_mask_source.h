@@ -4,9 +4,9 @@
 // stage needs the camera's motion (the refill's background), it estimates the KLT homography
 // between frames t-1 and t off frame t-1's mask, as the differencing source would.
 
-#include "core/image_area.h"
-#include "ego_motion/homography.h"
-#include "ego_motion/klt_tracker.h"
+#include <optional>
+
+#include "pipeline/frame_motion.h"
 #include "pipeline/mask_source.h"
 
 namespace dynvo {
@@ -22,10 +22,7 @@ class TruthMaskSource : public MaskSource {
   bool NeedsTruthMask() const override { return true; }
 
  private:
-  KltOptions klt_;
-  HomographyOptions homography_;
-  bool estimate_motion_;
-  TrackingPyramid previous_pyramid_;  // with estimate_motion: frame t-1's
+  std::optional<FrameMotion> motion_;  // with estimate_motion
 };
 
 }  // namespace dynvo

@@ -82,6 +82,14 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"), "features.num_features");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 99"), "beyond the last frame");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set mask_source=detector"), "needs detector.model");
+  ExpectOneLineError(
+      RunTool(dir, "dynvo-cli", run + " --set mask_source=detector --set detector.model=/no/model.weights"),
+      "detector.model /no/model.weights: cannot open the file");
+  const std::string corrupt_model = dir.Write("model.onnx", "not a network");
+  ExpectOneLineError(
+      RunTool(dir, "dynvo-cli", run + " --set mask_source=detector --set detector.model=" + Quote(corrupt_model)),
+      "model.onnx: OpenCV cannot load it");
 
   const std::string bad_config = dir.Write("bad.json", R"({"features": {"num_featurs": 10}})");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --config " + Quote(bad_config)),

@@ -94,6 +94,21 @@ TEST(ConfigRegistry, OverridesParseJsonOrText) {
   EXPECT_NE(ErrorOf([&] { r.ApplyOverride("nope=1"); }).find("--set: unknown key 'nope'"), std::string::npos);
 }
 
+TEST(ConfigRegistry, IntegerListsTakeJsonArraysOnly) {
+  std::vector<int> classes = {0};
+  ConfigRegistry r;
+  r.Bind("detector.classes", &classes, "class ids");
+  r.ApplyOverride("detector.classes=[0, 2, 7]");
+  EXPECT_EQ(classes, (std::vector<int>{0, 2, 7}));
+  r.Apply(nlohmann::json::parse(R"({"detector": {"classes": []}})"), "c.json");
+  EXPECT_TRUE(classes.empty());
+  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("detector.classes=3"); }).find("expects a list of integers, got 3"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("detector.classes=[1.5]"); }).find("expects an integer, got 1.5"),
+            std::string::npos);
+  EXPECT_EQ(r.ToJson()["detector"]["classes"], nlohmann::json::array());
+}
+
 TEST(ConfigRegistry, ToJsonEchoesEffectiveValues) {
   Fields f;
   ConfigRegistry r = Registry(&f);

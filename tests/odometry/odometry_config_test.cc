@@ -41,6 +41,20 @@ TEST(OdometryConfig, PaperConfigIsThePapersMethodLiterally) {
   EXPECT_FALSE(c.tracking.coherent_motion.enabled);
 }
 
+TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMask) {
+  nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
+  nlohmann::json ipl = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("ipl.json"), {}));
+  EXPECT_EQ(ipl["mask_source"], "detector");
+  EXPECT_EQ(ipl["detector"]["model"], "data/models/yolo-fastest-1.1_body.weights");  // tools/fetch_models.sh
+  for (const char* section : {"mask_source", "detector", "dynamic_mask"}) {  // dynamic_mask: the unused differencing
+    paper.erase(section);
+    ipl.erase(section);
+  }
+  EXPECT_EQ(paper, ipl) << nlohmann::json::diff(paper, ipl).dump(1);
+  const std::string no_model = LoadError("", {"mask_source=detector"});
+  EXPECT_NE(no_model.find("mask_source \"detector\" needs detector.model"), std::string::npos) << no_model;
+}
+
 TEST(OdometryConfig, BaselineIsThePaperWithoutItsMask) {
   nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
   nlohmann::json baseline = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("baseline.json"), {}));
@@ -70,8 +84,8 @@ TEST(OdometryConfig, TheDefaultsAreTheRecommendedConfig) {
 TEST(OdometryConfig, EveryKeyIsTheFieldsStructPath) {
   // A key's first part names a member of OdometryConfig (or is one), so `--set` reads like code.
   const std::vector<std::string> sections = {
-      "dataset.",       "camera.",     "mask_source", "homography.", "dynamic_mask.", "depth_change.",
-      "map_occlusion.", "depth_trim.", "features.",   "tracking.",   "local_ba.",  "run."};
+      "dataset.",       "camera.",     "mask_source", "homography.", "dynamic_mask.", "detector.", "depth_change.",
+      "map_occlusion.", "depth_trim.", "features.",   "tracking.",   "local_ba.",     "run."};
   for (const std::string& line : DescribeConfigKeys()) {
     bool known = false;
     for (const std::string& s : sections) known = known || line.rfind(s, 0) == 0;

@@ -186,11 +186,11 @@ def run_result(run: EvaluatedRun) -> RunResult:
                      mask=run.mask_quality(), ms_median=ms_median, ms_p90=ms_p90)
 
 
-def run_sequence(sequence: Sequence, config: str, out_dir: str) -> RunResult:
-    """Runs configs/CONFIG.json on a sequence into OUT/runs/SEQUENCE/CONFIG and evaluates it
-    (per-second RPE and ATE)."""
+def run_sequence(sequence: Sequence, config: str, out_dir: str, overrides: tuple[str, ...]) -> RunResult:
+    """Runs configs/CONFIG.json (then the overrides) on a sequence into OUT/runs/SEQUENCE/CONFIG
+    and evaluates it (per-second RPE and ATE)."""
     request = RunRequest(sequence.folder, os.path.join(out_dir, "runs", sequence.name, config),
-                         config_path(config))
+                         config_path(config), overrides)
     return run_result(run_and_evaluate(request, METRICS, "%s %s" % (sequence.name, config)))
 
 
@@ -198,7 +198,7 @@ def run_sequence(sequence: Sequence, config: str, out_dir: str) -> RunResult:
 
 CSV_COLUMNS = ("split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
                "twin_rpe_m_s", "ratio", "ate_m", "mask_precision", "mask_recall", "mask_iou",
-               "ms_median", "ms_p90")
+               "ms_median", "ms_p90", "overrides")
 MASK_KEYS = ("precision", "recall", "iou")
 
 
@@ -210,10 +210,11 @@ def cell(value: object) -> str:
 
 
 def result_row(row: RowSpec, config: str, result: Optional[RunResult],
-               twin: Optional[RunResult]) -> dict[str, str]:
+               twin: Optional[RunResult], overrides: tuple[str, ...] = ()) -> dict[str, str]:
     """One CSV row; result None: the row was not run (its shared data is absent)."""
     values: dict[str, object] = {"split": row.split, "sequence": row.sequence.name,
-                                 "kind": row.kind, "twin": row.twin.name, "config": config}
+                                 "kind": row.kind, "twin": row.twin.name, "config": config,
+                                 "overrides": "; ".join(overrides) or None}
     if result is None or twin is None:
         values["status"] = NOT_RUN
         return {key: cell(values.get(key)) for key in CSV_COLUMNS}
@@ -245,7 +246,7 @@ def read_results(path: str) -> list[dict[str, str]]:
         with open(path, newline="") as f:
             reader = csv.DictReader(f)
             rows = list(reader)
-            missing = [c for c in CSV_COLUMNS if c not in (reader.fieldnames or [])]
+            missing = [c for c in CSV_COLUMNS if c != "overrides" and c not in (reader.fieldnames or [])]
     except OSError as error:
         raise table_error(path, "cannot read (%s): run the suite first" % error.strerror) from None
     if missing:
@@ -290,6 +291,9 @@ def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
         " none). **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
         "Frames: %s." % ("; ".join(frames) if frames else "none run"),
     ]
+    overrides = sorted({r.get("overrides", "-") for r in rows} - {"-", ""})
+    if overrides:
+        text.append("Every run with %s." % ", ".join("`--set %s`" % o for group in overrides for o in group.split("; ")))
     if split == "validation":
         text.append(VALIDATION_NOTE)
     return " ".join(text[:2]) + "\n" + "\n".join(text[2:])
@@ -390,12 +394,12 @@ def run_suite(args: argparse.Namespace) -> int:
                               for c in args.configs))
     log("suite", "%d runs, %d at a time" % (len(runs), args.jobs))
     results = dict(zip(runs, run_parallel(
-        [functools.partial(run_sequence, s, c, out_dir) for s, c in runs], args.jobs)))
+        [functools.partial(run_sequence, s, c, out_dir, tuple(args.overrides)) for s, c in runs], args.jobs)))
     os.makedirs(args.results, exist_ok=True)
     for split in splits:
         csv_path = os.path.join(args.results, "suite_%s.csv" % split)
         write_csv(csv_path, [result_row(row, c, results.get((row.sequence, c)),
-                                        results.get((row.twin, c)))
+                                        results.get((row.twin, c)), tuple(args.overrides))
                              for row in rows[split] for c in args.configs])
         write_markdown(csv_path, csv_path[:-4] + ".md")
         log("suite", "wrote %s and .md" % display_path(csv_path))
@@ -454,6 +458,8 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
                         help="generated sequences and runs (default: out/bench/suite)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, metavar="N",
                         help="runs at the same time (default: the number of cores)")
+    parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                        help="config override for every run, e.g. detector.model=PATH (repeatable)")
     parser.set_defaults(run=functools.partial(checked_run, parser))
     table = commands.add_parser(
         "suite-table", help="the benchmark suite's Markdown tables again from their CSVs",

@@ -1,0 +1,104 @@
+#include "detection/person_mask.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+namespace dynvo {
+namespace {
+
+// Histogram of log depth over `values`, smoothed by [1 2 1]; bin i covers log(lowest) + i * width.
+std::vector<double> LogDepthHistogram(const std::vector<float>& values, double lowest, double width, int bins) {
+  std::vector<double> histogram(static_cast<size_t>(bins), 0.0);
+  for (const float v : values) {
+    const int bin = std::clamp(static_cast<int>((std::log(v) - std::log(lowest)) / width), 0, bins - 1);
+    histogram[static_cast<size_t>(bin)] += 1.0;
+  }
+  std::vector<double> smooth(histogram.size(), 0.0);
+  for (size_t i = 0; i < histogram.size(); ++i) {
+    const double left = i > 0 ? histogram[i - 1] : 0.0, right = i + 1 < histogram.size() ? histogram[i + 1] : 0.0;
+    smooth[i] = left + 2.0 * histogram[i] + right;
+  }
+  return smooth;
+}
+
+// The region the silhouette may reach: the box grown by `margin` of its size, clipped to `size`.
+cv::Rect SearchRegion(const cv::Rect2d& box, double margin, cv::Size size) {
+  const cv::Rect2d grown(box.x - margin * box.width, box.y - margin * box.height, box.width * (1 + 2 * margin),
+                         box.height * (1 + 2 * margin));
+  const cv::Rect rounded(
+      cv::Point(static_cast<int>(std::floor(grown.x)), static_cast<int>(std::floor(grown.y))),
+      cv::Point(static_cast<int>(std::ceil(grown.br().x)), static_cast<int>(std::ceil(grown.br().y))));
+  return rounded & cv::Rect(cv::Point(0, 0), size);
+}
+
+// The components of `band` (in-band depths of the region) that reach into `core` (the box, in
+// region coordinates) with at least `min_pixels` pixels.
+cv::Mat ComponentsInCore(const cv::Mat& band, const cv::Rect& core, int min_pixels) {
+  cv::Mat labels;
+  const int count = cv::connectedComponents(band, labels, 8, CV_32S);
+  std::vector<int> in_core(static_cast<size_t>(count), 0);
+  for (int y = core.y; y < core.y + core.height; ++y)
+    for (int x = core.x; x < core.x + core.width; ++x) ++in_core[static_cast<size_t>(labels.at<int>(y, x))];
+  cv::Mat kept = cv::Mat::zeros(band.size(), CV_8UC1);
+  for (int y = 0; y < band.rows; ++y)
+    for (int x = 0; x < band.cols; ++x) {
+      const int label = labels.at<int>(y, x);
+      if (label > 0 && in_core[static_cast<size_t>(label)] >= min_pixels) kept.at<uchar>(y, x) = 255;
+    }
+  return kept;
+}
+
+}  // namespace
+
+double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOptions& options) {
+  std::vector<float> values;
+  const cv::Mat inside = depth(box);
+  for (int y = 0; y < inside.rows; ++y)
+    for (int x = 0; x < inside.cols; ++x)
+      if (inside.at<float>(y, x) > 0.0f) values.push_back(inside.at<float>(y, x));
+  if (values.empty() || values.size() < options.min_depth_share * box.area()) return 0.0;
+  const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
+  const double width = std::log1p(options.bin_ratio);
+  const int bins = std::max(1, static_cast<int>((std::log(*highest) - std::log(*lowest)) / width) + 1);
+  const std::vector<double> histogram = LogDepthHistogram(values, *lowest, width, bins);
+  const double largest = *std::max_element(histogram.begin(), histogram.end());
+  for (size_t i = 0; i < histogram.size(); ++i) {
+    const bool peak =
+        (i == 0 || histogram[i] >= histogram[i - 1]) && (i + 1 == histogram.size() || histogram[i] >= histogram[i + 1]);
+    if (peak && histogram[i] >= options.dominance * largest)
+      return *lowest * std::exp((static_cast<double>(i) + 0.5) * width);
+  }
+  return 0.0;  // not reached: the largest bin is a peak
+}
+
+cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const PersonMaskOptions& options) {
+  CV_Assert(depth.type() == CV_32FC1);
+  cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);
+  const cv::Rect core = SearchRegion(box, 0.0, depth.size());
+  if (core.area() == 0) return mask;
+  const double person = PersonDepth(depth, core, options);
+  if (person <= 0.0) {  // no depth to cut by: the box
+    mask(core).setTo(255);
+    return mask;
+  }
+  const cv::Rect region = SearchRegion(box, options.box_margin, depth.size());
+  const double half_band = std::max(options.band_m, options.band_ratio * person);
+  const cv::Mat region_depth = depth(region);
+  const cv::Mat band = (region_depth >= person - half_band) & (region_depth <= person + half_band);
+  const cv::Rect core_in_region(core.tl() - region.tl(), core.size());
+  cv::Mat silhouette = ComponentsInCore(band, core_in_region, std::max(1, core.area() / 50));
+  // Measurement holes at the silhouette's edge (hair, depth shadows) join it; then the margin.
+  const cv::Mat kernel =
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * options.grow_px + 1, 2 * options.grow_px + 1));
+  cv::Mat near_silhouette;
+  cv::dilate(silhouette, near_silhouette, kernel);
+  silhouette |= near_silhouette & (region_depth <= 0.0f);
+  cv::dilate(silhouette, silhouette, kernel);
+  silhouette.copyTo(mask(region));
+  return mask;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,30 @@
+#pragma once
+// A detection box to a person's mask by depth: inside the box the person is the dominant near
+// depth mode, grown to its silhouette by depth continuity (a little beyond the box, where an arm
+// or a foot sticks out); what the box shows behind the person (background between the legs,
+// beside the shoulders) stays out of the mask and usable.
+
+#include <opencv2/core.hpp>
+
+namespace dynvo {
+
+struct PersonMaskOptions {
+  double box_margin = 0.1;  // the silhouette may reach this share of the box's size beyond it
+  double bin_ratio = 0.04;  // depth histogram bins, each this relative width (log depth)
+  double dominance = 0.5;   // a depth mode counts with at least this share of the largest one's depths;
+                            // the nearest of those is the person
+  double band_m = 0.3;      // the person's depths: its mode +- max(band_m, band_ratio x depth)
+  double band_ratio = 0.12;
+  int grow_px = 6;               // the silhouette grown by this much (depth/colour misalignment, hair)
+  double min_depth_share = 0.1;  // with fewer depths in the box than this share, the whole box is the mask
+};
+
+// The mask (CV_8UC1 of depth's size, 255 = the person) of the person detected in `box` (image
+// pixels), from depth (CV_32FC1 metres, 0 = no measurement). Empty box: an empty mask.
+cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const PersonMaskOptions& options = {});
+
+// The depth of the person in `box`: the nearest depth mode holding at least `dominance` of the
+// largest mode's depths; 0 when the box has too few depths (min_depth_share).
+double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOptions& options = {});
+
+}  // namespace dynvo

@@ -1,0 +1,65 @@
+#include "detection/person_mask.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+namespace dynvo {
+namespace {
+
+// A wall at 4 m, a person (head and body, arms apart) at 2 m in front of it, a small box on
+// the floor at 1.5 m inside the person's detection box, and depth holes along the person's left
+// edge, as Kinect leaves them. The person's pixels are known.
+struct Scene {
+  cv::Mat depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(4.0f));
+  cv::Mat person = cv::Mat::zeros(480, 640, CV_8UC1);
+  cv::Rect2d box{250, 80, 140, 360};
+};
+
+Scene MakeScene() {
+  Scene s;
+  cv::circle(s.person, {320, 120}, 30, 255, cv::FILLED);                  // head
+  cv::rectangle(s.person, cv::Rect(285, 150, 70, 150), 255, cv::FILLED);  // body
+  cv::rectangle(s.person, cv::Rect(262, 155, 18, 120), 255, cv::FILLED);  // arm, apart from the body
+  cv::rectangle(s.person, cv::Rect(290, 300, 25, 135), 255, cv::FILLED);  // legs with a gap between
+  cv::rectangle(s.person, cv::Rect(325, 300, 25, 135), 255, cv::FILLED);
+  s.depth.setTo(2.0f, s.person);
+  s.depth(cv::Rect(360, 400, 25, 30)).setTo(1.5f);  // the small box on the floor
+  s.depth(cv::Rect(285, 180, 3, 100)).setTo(0.0f);  // holes at the body's edge
+  return s;
+}
+
+TEST(PersonMask, TheNearDominantModeIsThePerson) {
+  const Scene s = MakeScene();
+  EXPECT_NEAR(PersonDepth(s.depth, cv::Rect(s.box)), 2.0, 2.0 * 0.04);  // one histogram bin
+}
+
+TEST(PersonMask, CoversThePersonAndLeavesTheBackgroundInTheBox) {
+  const Scene s = MakeScene();
+  const PersonMaskOptions options;
+  const cv::Mat mask = PersonMaskFromBox(s.depth, s.box, options);
+  const double person = cv::countNonZero(s.person);
+  const double covered = cv::countNonZero(mask & s.person);
+  EXPECT_GT(covered / person, 0.99);
+  // Background inside the box: masked only within grow_px of the silhouette (and the holes).
+  cv::Mat near_person;
+  const int reach = 2 * options.grow_px + 1;
+  cv::dilate(s.person, near_person,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
+  cv::Mat background_in_box = cv::Mat::zeros(mask.size(), CV_8UC1);
+  background_in_box(cv::Rect(s.box)).setTo(255);
+  background_in_box &= ~s.person;
+  const double far_background = cv::countNonZero(background_in_box & ~near_person);
+  EXPECT_EQ(cv::countNonZero(mask & background_in_box & ~near_person), 0);
+  EXPECT_GT(far_background, 0.3 * cv::countNonZero(background_in_box));  // a real test: there is such background
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(362, 405, 20, 20))), 0);      // the nearer small box is not the person
+}
+
+TEST(PersonMask, WithoutDepthTheBoxIsTheMask) {
+  const cv::Mat depth = cv::Mat::zeros(480, 640, CV_32FC1);
+  const cv::Mat mask = PersonMaskFromBox(depth, cv::Rect2d(100.4, 50.2, 80, 200));
+  EXPECT_EQ(cv::countNonZero(mask), 81 * 201);  // the box's pixels, rounded outwards
+  EXPECT_EQ(cv::countNonZero(PersonMaskFromBox(depth, cv::Rect2d(700, 50, 80, 200))), 0);  // outside the image
+}
+
+}  // namespace
+}  // namespace dynvo
