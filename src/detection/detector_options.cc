@@ -11,6 +11,7 @@ void DetectorOptions::Check() const {
   RequireOption(confidence > 0.0 && confidence < 1.0, "detector", "confidence", "in (0, 1)", confidence);
   RequireOption(nms_threshold > 0.0 && nms_threshold <= 1.0, "detector", "nms_threshold", "in (0, 1]", nms_threshold);
   for (const int id : classes) RequireOption(id >= 0, "detector", "classes", "class ids >= 0", id);
+  RequireOption(every_frames >= 1, "detector", "every_frames", ">= 1", every_frames);
 }
 
 void BindConfigKeys(const std::string& prefix, DetectorOptions* o, ConfigRegistry* r) {
@@ -21,6 +22,9 @@ void BindConfigKeys(const std::string& prefix, DetectorOptions* o, ConfigRegistr
   r->Bind(prefix + ".confidence", &o->confidence, "detections scoring below this are dropped");
   r->Bind(prefix + ".nms_threshold", &o->nms_threshold, "overlap (IoU) above which boxes of a class merge");
   r->Bind(prefix + ".classes", &o->classes, "class ids treated as movable (0 = person in COCO models)");
+  r->Bind(prefix + ".every_frames", &o->every_frames,
+          "detect on every k-th frame; the frames between carry the last detection by the camera's motion "
+          "and cut it again by depth (a slower machine or a bigger model)");
 }
 
 }  // namespace dynvo

@@ -17,12 +17,15 @@ struct DetectorOptions {
   double confidence = 0.4;      // objectness x class score kept, (0, 1)
   double nms_threshold = 0.45;  // boxes of one class overlapping more than this IoU merge, (0, 1]
   std::vector<int> classes{0};  // class ids treated as movable (COCO and the body model: 0 = person)
+  int every_frames = 1;         // detect on frames whose index is a multiple of this (>= 1); in between
+                                // the last detection is carried by the camera's motion and cut by depth
 
   // Throws InputError naming the key ("detector.input_size must be ...") when out of range.
   void Check() const;
 };
 
-// The keys under `prefix` ("detector"): model, config, input_size, confidence, nms_threshold, classes.
+// The keys under `prefix` ("detector"): model, config, input_size, confidence, nms_threshold, classes,
+// every_frames.
 void BindConfigKeys(const std::string& prefix, DetectorOptions* options, ConfigRegistry* registry);
 
 }  // namespace dynvo

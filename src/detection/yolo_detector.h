@@ -11,14 +11,9 @@
 #include <opencv2/dnn.hpp>
 
 #include "detection/detector_options.h"
+#include "detection/person_detector.h"
 
 namespace dynvo {
-
-struct Detection {
-  cv::Rect2d box;      // image pixels, clipped to the image
-  double score = 0.0;  // the network's confidence in the class
-  int class_id = 0;
-};
 
 // How a network's output tensor lays out its candidates.
 enum class YoloLayout {
@@ -37,14 +32,14 @@ std::vector<Detection> DecodeYoloOutput(const cv::Mat& output, YoloLayout layout
 // Non-maximum suppression per class (options.nms_threshold), best first.
 std::vector<Detection> SuppressOverlaps(const std::vector<Detection>& candidates, const DetectorOptions& options);
 
-class YoloDetector {
+class YoloDetector : public PersonDetector {
  public:
   // Loads options.model (with options.config for Darknet). Throws InputError naming the file
   // when it is missing, of an unknown kind, or not loadable by OpenCV's DNN module.
   explicit YoloDetector(const DetectorOptions& options);
 
   // The movable objects of a CV_8UC3 BGR image, best first. One call at a time per detector.
-  std::vector<Detection> Detect(const cv::Mat& bgr);
+  std::vector<Detection> Detect(const cv::Mat& bgr) override;
 
  private:
   DetectorOptions options_;

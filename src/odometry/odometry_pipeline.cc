@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "detection/yolo_detector.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "pipeline/depth_change_refinement.h"
 #include "pipeline/detector_mask_source.h"
@@ -19,8 +20,8 @@ std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const I
   if (config.mask_source == MaskSourceKind::kGroundTruth)
     return std::make_unique<TruthMaskSource>(config.klt, config.homography, config.features.refill_from_background);
   if (config.mask_source == MaskSourceKind::kDetector)
-    return std::make_unique<DetectorMaskSource>(config.detector, config.klt, config.homography,
-                                                config.features.refill_from_background, executor);
+    return std::make_unique<DetectorMaskSource>(std::make_unique<YoloDetector>(config.detector), config.detector,
+                                                config.klt, config.homography, executor);
   return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, area, executor);
 }
 
@@ -86,11 +87,13 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.stamp = frame.stamp;
   const MaskPacket& mask = stages.mask;
   record.mask_ok = mask.ok();
-  record.mask_note = mask.status == MaskStatus::kFirstFrame ? "first frame: no previous frame to difference"
-                     : mask.status == MaskStatus::kFailed   ? mask.failure
-                                                            : "";
+  record.mask_note =
+      mask.status == MaskStatus::kFirstFrame ? "first frame: no previous frame to difference" : mask.failure;
   record.dynamic_ratio = mask.dynamic_ratio;
-  if (mask.status == MaskStatus::kDetected) record.people = static_cast<int>(mask.people.size());
+  if (mask.status == MaskStatus::kDetected) {
+    record.people = static_cast<int>(mask.people.size());
+    record.detection_age = mask.detection_age;
+  }
   record.mask_threshold = mask.threshold;
   record.times.dynamic_mask_ms = mask.ms + stages.refinement_upkeep_ms;
   const FeatureSplit& split = stages.features.split;

@@ -1,18 +1,21 @@
 #pragma once
-// The person detector as a mask source (the second paper, IPL-SLAM): each frame's movable
-// objects found by a YOLO network (detection/yolo_detector.h), each box cut to its person by
-// depth (detection/person_mask.h); every person found leaves the features. Frame t+1's
-// detection starts on the executor while frame t is tracked.
+// The person detector as a mask source (the second paper, IPL-SLAM): the movable objects of a
+// frame found by a detector (detection/yolo_detector.h), each box cut to its person by depth
+// (detection/person_mask.h); every person found leaves the features. The detection of frame
+// t+1 runs on the executor while frame t is tracked. With detector.every_frames = k the
+// detector runs on every k-th frame; the frames between, and a frame whose detection failed,
+// carry the last boxes by the camera's motion (KLT homography) and cut them again by their own
+// depth, with the detection's age in frames.
 
-#include <optional>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "core/executor.h"
 #include "detection/detector_options.h"
+#include "detection/person_detector.h"
 #include "detection/person_mask.h"
-#include "detection/yolo_detector.h"
 #include "pipeline/frame_motion.h"
 #include "pipeline/mask_source.h"
 
@@ -20,31 +23,33 @@ namespace dynvo {
 
 class DetectorMaskSource : public MaskSource {
  public:
-  // Loads the model (throws InputError naming the file when it cannot). With `estimate_motion`,
-  // each packet also carries the homography frame t-1 -> t. `executor` must outlive the source.
-  DetectorMaskSource(const DetectorOptions& detector, const KltOptions& klt, const HomographyOptions& homography,
-                     bool estimate_motion, Executor& executor);
+  // `detector` runs on the executor, one frame at a time; `options` must have passed Check();
+  // `executor` must outlive the source.
+  DetectorMaskSource(std::unique_ptr<PersonDetector> detector, const DetectorOptions& options, const KltOptions& klt,
+                     const HomographyOptions& homography, Executor& executor);
 
-  // kDetected: the people's boxes and the union of their masks (empty mask: nobody).
+  // kDetected: the people's boxes (detected this frame or carried, MaskPacket::detection_age)
+  // and the union of their masks (empty: nobody); a detector failure is in `failure`, with
+  // the last boxes carried.
   MaskPacket Compute(const MaskSourceInput& input) override;
   void LookAhead(const RgbdFrame& current, const RgbdFrame& next) override;
 
  private:
-  struct People {
-    std::vector<Detection> boxes;
-    cv::Mat mask;  // CV_8UC1, 255 = a person
-    double ms = 0.0;
-  };
-  // Detects a frame's people and cuts their masks by depth.
-  People Detect(const RgbdFrame& frame);
+  bool DetectsOn(const RgbdFrame& frame) const;
   void Start(const RgbdFrame& frame);
+  // Frame t's boxes into `packet`: the detection of frame t, else (or when it fails) the last
+  // boxes moved by the packet's homography.
+  void TakeBoxes(const RgbdFrame& frame, MaskPacket* packet);
 
-  YoloDetector detector_;  // one detection at a time: a started task is waited for before the next
+  std::shared_ptr<PersonDetector> detector_;  // shared with the running task
+  DetectorOptions options_;
   PersonMaskOptions person_mask_;
-  std::optional<FrameMotion> motion_;  // with estimate_motion
+  FrameMotion motion_;
   Executor& executor_;
-  Task<People> pending_;
-  cv::Mat pending_bgr_;  // the pixels pending_ detects on
+  Task<std::vector<Detection>> pending_;
+  cv::Mat pending_bgr_;          // the pixels pending_ detects on
+  std::vector<Detection> last_;  // the boxes of the last frame
+  int age_ = -1;                 // frames since last_ was detected (-1: never)
 };
 
 }  // namespace dynvo

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "detection/yolo_detector.h"
+#include "detection/person_detector.h"
 #include "features/feature_filter.h"
 #include "mapping/local_mapper.h"
 #include "tracking/frame_tracker.h"
@@ -40,6 +40,7 @@ struct MaskPacket {
   double dynamic_ratio = 0.0;     // share of `mask`'s pixels
   int threshold = -1;             // grey level the forward difference was binarised at (kComputed)
   std::vector<Detection> people;  // kDetected: the detector's boxes, best first
+  int detection_age = -1;         // kDetected: frames since `people` were detected (0: this frame; -1: never)
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;

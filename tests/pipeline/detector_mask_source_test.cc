@@ -1,14 +1,22 @@
 // The detector source on the shared sample frame of fr3_walking_xyz (two people): both found,
 // each box cut to its person by depth, what lies beyond the boxes untouched; the detection run
-// ahead on workers gives what it gives in turn.
+// ahead on workers gives what it gives in turn. With a scripted detector on a panning camera:
+// boxes carried between detections follow the camera, with their age; a failing detector
+// leaves the frames going with the carried boxes and the reason.
 
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/error.h"
+#include "detection/yolo_detector.h"
 #include "pipeline/detector_mask_source.h"
+#include "pipeline_frames.h"
 #include "support/shared_data.h"
 
 namespace dynvo {
@@ -36,14 +44,34 @@ MaskPacket ComputeOn(MaskSource& source, const RgbdFrame& frame) {
   return source.Compute({frame, nullptr, none, none});
 }
 
+std::unique_ptr<DetectorMaskSource> YoloSource(const std::string& shared, Executor& executor) {
+  const DetectorOptions options = BodyModel(shared);
+  return std::make_unique<DetectorMaskSource>(std::make_unique<YoloDetector>(options), options, KltOptions{},
+                                              HomographyOptions{}, executor);
+}
+
+// A detector that finds one fixed box, counts its calls, and fails on the calls listed.
+class ScriptedDetector : public PersonDetector {
+ public:
+  ScriptedDetector(int* calls, std::vector<int> failing) : calls_(calls), failing_(std::move(failing)) {}
+  std::vector<Detection> Detect(const cv::Mat& /*bgr*/) override {
+    const int call = (*calls_)++;
+    if (std::find(failing_.begin(), failing_.end(), call) != failing_.end()) throw InputError("scripted failure");
+    return {{cv::Rect2d(300, 100, 80, 200), 0.9, 0}};
+  }
+
+ private:
+  int* calls_;
+  std::vector<int> failing_;
+};
+
 TEST(DetectorMaskSource, MasksEachPersonInsideItsBox) {
   DYNVO_REQUIRE_SHARED(shared);
   const RgbdFrame frame = SampleFrame(shared);
   ASSERT_FALSE(frame.bgr.empty());
   ASSERT_FALSE(frame.depth.empty());
   Executor executor(0);
-  DetectorMaskSource source(BodyModel(shared), KltOptions{}, HomographyOptions{}, false, executor);
-  const MaskPacket packet = ComputeOn(source, frame);
+  const MaskPacket packet = ComputeOn(*YoloSource(shared, executor), frame);
   ASSERT_EQ(packet.status, MaskStatus::kDetected);
   EXPECT_TRUE(packet.ok());
   ASSERT_EQ(packet.people.size(), 2u);
@@ -59,20 +87,58 @@ TEST(DetectorMaskSource, MasksEachPersonInsideItsBox) {
     boxes(grown & cv::Rect(cv::Point(), frame.gray.size())).setTo(255);
   }
   EXPECT_EQ(cv::countNonZero(packet.mask & ~boxes), 0);
-  EXPECT_FALSE(packet.has_motion);  // not asked for
+  EXPECT_EQ(packet.detection_age, 0);
 }
 
 TEST(DetectorMaskSource, TheLookAheadOnWorkersGivesWhatItGivesInTurn) {
   DYNVO_REQUIRE_SHARED(shared);
   const RgbdFrame frame = SampleFrame(shared);
   Executor in_turn(0), workers(2);
-  DetectorMaskSource a(BodyModel(shared), KltOptions{}, HomographyOptions{}, false, in_turn);
-  DetectorMaskSource b(BodyModel(shared), KltOptions{}, HomographyOptions{}, false, workers);
-  const MaskPacket first = ComputeOn(a, frame);
-  b.LookAhead(frame, frame);  // started ahead on a worker, taken by the next Compute on the same pixels
-  const MaskPacket second = ComputeOn(b, frame);
+  const std::unique_ptr<DetectorMaskSource> a = YoloSource(shared, in_turn), b = YoloSource(shared, workers);
+  const MaskPacket first = ComputeOn(*a, frame);
+  b->LookAhead(frame, frame);  // started ahead on a worker, taken by the next Compute on the same pixels
+  const MaskPacket second = ComputeOn(*b, frame);
   ASSERT_EQ(first.people.size(), second.people.size());
   EXPECT_EQ(cv::countNonZero(first.mask != second.mask), 0);
+}
+
+// Detections on frames 0 and 3 only: frames 1 and 2 carry the box with the pan (-6 px a frame).
+TEST(DetectorMaskSource, CarriesTheBoxesByTheCamerasMotionBetweenDetections) {
+  int calls = 0;
+  DetectorOptions options;
+  options.every_frames = 3;
+  Executor executor(0);
+  DetectorMaskSource source(std::make_unique<ScriptedDetector>(&calls, std::vector<int>{}), options, KltOptions{},
+                            HomographyOptions{}, executor);
+  for (int i = 0; i < 4; ++i) {
+    const MaskPacket packet = ComputeOn(source, test::PanningFrame(i, false));
+    ASSERT_EQ(packet.people.size(), 1u) << "frame " << i;
+    EXPECT_EQ(packet.detection_age, i % 3) << "frame " << i;
+    const double expected_x = i == 3 ? 300.0 : 300.0 - 6.0 * i;
+    EXPECT_NEAR(packet.people[0].box.x, expected_x, 0.5) << "frame " << i;
+    EXPECT_NEAR(packet.people[0].box.width, 80.0, 0.5) << "frame " << i;
+    EXPECT_GT(cv::countNonZero(packet.mask), 80 * 200) << "frame " << i;
+  }
+  EXPECT_EQ(calls, 2);
+}
+
+TEST(DetectorMaskSource, AFailingDetectorLeavesTheFramesGoingWithTheCarriedBoxes) {
+  int calls = 0;
+  Executor executor(2);
+  DetectorMaskSource source(std::make_unique<ScriptedDetector>(&calls, std::vector<int>{1, 2}), DetectorOptions{},
+                            KltOptions{}, HomographyOptions{}, executor);
+  std::vector<RgbdFrame> frames;  // one decoded frame handed to both calls, as the pipeline does
+  for (int i = 0; i < 4; ++i) frames.push_back(test::PanningFrame(i, false));
+  for (int i = 0; i < 4; ++i) {
+    const MaskPacket packet = ComputeOn(source, frames[static_cast<size_t>(i)]);
+    if (i < 3) source.LookAhead(frames[static_cast<size_t>(i)], frames[static_cast<size_t>(i) + 1]);
+    ASSERT_EQ(packet.status, MaskStatus::kDetected);
+    ASSERT_EQ(packet.people.size(), 1u) << "frame " << i;
+    const bool failed = i == 1 || i == 2;
+    EXPECT_EQ(packet.failure, failed ? "detector: scripted failure" : "") << "frame " << i;
+    EXPECT_EQ(packet.detection_age, failed ? i : 0) << "frame " << i;
+  }
+  EXPECT_EQ(calls, 4);  // each frame detected once, ahead on a worker after the first
 }
 
 }  // namespace
