@@ -64,6 +64,7 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
+  int detector_frames = 0, detected_frames = 0, frames_with_people = 0, detector_failures = 0;  // mask source detector
   long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0, coherent_motion_rejected = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
@@ -83,6 +84,12 @@ struct RunTally {
     keyframes += r.keyframe;
     mask_computed += r.mask_ok;
     mask_failed += !r.mask_ok && !r.mask_note.empty();
+    if (r.people >= 0) {
+      ++detector_frames;
+      detected_frames += r.detection_age == 0;
+      frames_with_people += r.people > 0;
+      detector_failures += !r.mask_note.empty();
+    }
     features_removed += r.features_removed;
     features_readmitted += r.features_readmitted;
     new_points_rejected += r.new_points_rejected;
@@ -134,6 +141,10 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
                       {"features_readmitted", tally.features_readmitted},
                       {"new_points_rejected", tally.new_points_rejected},
                       {"coherent_motion_rejected", tally.coherent_motion_rejected}};
+  if (tally.detector_frames > 0)
+    report["counts"]["detector"] = {{"frames_detected", tally.detected_frames},
+                                    {"frames_with_people", tally.frames_with_people},
+                                    {"failures", tally.detector_failures}};
   nlohmann::json stages;
   for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
   report["time"] = {{"processing_ms", Summary(tally.processing)},
