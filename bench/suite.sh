@@ -6,10 +6,10 @@
 # the rest). Writes bench/results/suite_<split>.csv and suite_<split>.md.
 #   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,dynvo]
 #                       [--out DIR] [--results DIR] [--jobs N] [--set KEY=VALUE]...
-#   The tables of docs/results.md also run configs/ipl.json, with the detector model by path:
-#   bash bench/suite.sh --configs baseline,paper,dynvo,ipl \
-#     --set detector.model=../shared/models/yolo-fastest-1.1_body.weights \
-#     --set detector.config=../shared/models/yolo-fastest-1.1_body.cfg
+#   The configs find the person detector's model at data/models/ of the folder the suite runs in
+#   (bash tools/fetch_models.sh puts it there; without it dynvo runs geometric only and ipl
+#   fails). The tables of docs/results.md: from the repository root, after fetching the model,
+#   bash bench/suite.sh --configs baseline,paper,dynvo,ipl
 #   bash bench/suite.sh table --split dev      (the Markdown again from the CSV; no build, no runs:
 #                                               the command suite-table)
 #   (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR, PYTHON)

@@ -51,12 +51,15 @@ checked() {
   [ "$("${2}sum" "$1" | cut -d' ' -f1)" = "$3" ]
 }
 
+for model in "${models[@]}"; do
+  files_of "$model" >/dev/null || {
+    echo "fetch_models: error: unknown model '$model' (expected body or yolov4-tiny)" >&2; exit 2; }
+done
 command -v curl >/dev/null || { echo "fetch_models: error: curl is required (apt-get install curl)" >&2; exit 1; }
 mkdir -p "$dest"
 failed=()
 for model in "${models[@]}"; do
-  entries="$(files_of "$model")" || {
-    echo "fetch_models: error: unknown model '$model' (expected body or yolov4-tiny)" >&2; exit 2; }
+  entries="$(files_of "$model")"
   while IFS='|' read -r file url algorithm checksum; do
     path="$dest/$file"
     if checked "$path" "$algorithm" "$checksum"; then echo "fetch_models: $path present, checked"; continue; fi

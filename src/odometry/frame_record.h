@@ -48,6 +48,7 @@ struct FrameRecord {
   bool keyframe = false;
   std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
   int people = -1;                         // people the detector found (-1: no detector)
+  int people_moving = 0;                   // of them, judged moving (people refinement)
   int detection_age = -1;                  // frames since they were detected (0: this frame; -1: none yet)
 };
 

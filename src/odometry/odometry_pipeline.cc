@@ -1,6 +1,8 @@
 #include "odometry/odometry_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <utility>
 
 #include "core/stopwatch.h"
@@ -9,6 +11,7 @@
 #include "pipeline/depth_change_refinement.h"
 #include "pipeline/detector_mask_source.h"
 #include "pipeline/differencing_mask_source.h"
+#include "pipeline/people_refinement.h"
 #include "pipeline/static_map_refinement.h"
 #include "pipeline/truth_mask_source.h"
 
@@ -25,14 +28,27 @@ std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const I
   return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, area, executor);
 }
 
+// True when `path` names a file that can be opened.
+bool Readable(const std::string& path) { return std::ifstream(path).good(); }
+
 std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camera, const OdometryConfig& config,
-                                                             Executor& executor) {
+                                                             Executor& executor, std::vector<std::string>* notices) {
   std::vector<std::unique_ptr<MaskRefinement>> refinements;
   if (config.mask_source != MaskSourceKind::kDifference) return refinements;  // they refine differencing
   if (config.depth_change.enabled)
     refinements.push_back(std::make_unique<DepthChangeRefinement>(camera, config.depth_change, executor));
   if (config.map_occlusion.enabled)
     refinements.push_back(std::make_unique<StaticMapRefinement>(camera, config.map_occlusion, config.depth_trim));
+  if (config.detector.model.empty()) return refinements;
+  if (!Readable(config.detector.model)) {  // the recommended config without its model: geometric only
+    notices->push_back("detector.model " + config.detector.model +
+                       " not found: people are not detected, the mask is geometric only "
+                       "(bash tools/fetch_models.sh fetches the model)");
+    return refinements;
+  }
+  // The people found join the mask when judged moving.
+  refinements.push_back(
+      std::make_unique<PeopleRefinement>(camera, std::make_unique<YoloDetector>(config.detector), executor));
   return refinements;
 }
 
@@ -43,7 +59,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
     : own_executor_(executor ? nullptr : std::make_unique<Executor>(0)),
       executor_(executor ? *executor : *own_executor_),
       mask_source_(MakeMaskSource(config, image_area, executor_)),
-      refinements_(MakeRefinements(camera, config, executor_)),
+      refinements_(MakeRefinements(camera, config, executor_, &notices_)),
       features_(camera, config.features, image_area, executor_),
       tracker_(camera, config.tracking),
       mapper_(camera, config.local_ba) {}
@@ -53,6 +69,7 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   ProcessedFrame processed;
   FrameOutput& out = processed.stages;
   features_.Begin(frame);  // ORB on the executor, beside the mask
+  for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->Begin(frame);
   // 1. The dynamic mask: its source, then the refinements.
   out.mask = mask_source_->Compute({frame, next, truth_mask, last_mask_});
   if (next != nullptr) mask_source_->LookAhead(frame, *next);
@@ -90,10 +107,11 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.mask_note =
       mask.status == MaskStatus::kFirstFrame ? "first frame: no previous frame to difference" : mask.failure;
   record.dynamic_ratio = mask.dynamic_ratio;
-  if (mask.status == MaskStatus::kDetected) {
+  if (mask.status == MaskStatus::kDetected || mask.detection_age >= 0) {  // a detector ran
     record.people = static_cast<int>(mask.people.size());
     record.detection_age = mask.detection_age;
   }
+  record.people_moving = static_cast<int>(std::count(mask.people_moving.begin(), mask.people_moving.end(), true));
   record.mask_threshold = mask.threshold;
   record.times.dynamic_mask_ms = mask.ms + stages.refinement_upkeep_ms;
   const FeatureSplit& split = stages.features.split;

@@ -6,6 +6,7 @@
 // depend on frame t's state (the next frame's features and mask) runs ahead on the executor.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -50,10 +51,13 @@ class OdometryPipeline {
 
   // True when Process wants frame t's ground-truth mask (mask source "ground_truth").
   bool NeedsTruthMask() const { return mask_source_->NeedsTruthMask(); }
+  // What the pipeline left out of the config and why (e.g. a detector model not found), once.
+  const std::vector<std::string>& notices() const { return notices_; }
 
  private:
   std::unique_ptr<Executor> own_executor_;  // when none is given: no workers
   Executor& executor_;
+  std::vector<std::string> notices_;
   std::unique_ptr<MaskSource> mask_source_;
   std::vector<std::unique_ptr<MaskRefinement>> refinements_;
   FeatureStage features_;

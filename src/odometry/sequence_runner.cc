@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <set>
 
@@ -225,6 +226,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
                        std::to_string(count - 1));
 
   nlohmann::json report = RunHeader(request, config, dataset, count);
+  report["notices"] = pipeline.notices();
+  for (const std::string& notice : pipeline.notices()) std::cerr << "dynvo-cli: note: " << notice << "\n";
 
   const bool evaluate_masks = dataset.has_masks() && config.mask_source != MaskSourceKind::kNone;
   FrameLoader loader(dataset, count, evaluate_masks, executor);

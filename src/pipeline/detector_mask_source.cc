@@ -4,27 +4,10 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "detection/box_motion.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 
 namespace dynvo {
-namespace {
-
-// The box around `box` moved by the homography current_from_previous, clipped to `size`.
-cv::Rect2d MoveBox(const cv::Rect2d& box, const Eigen::Matrix3d& current_from_previous, cv::Size size) {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const cv::Point2d& corner :
-       {box.tl(), cv::Point2d(box.br().x, box.y), box.br(), cv::Point2d(box.x, box.br().y)}) {
-    const Eigen::Vector3d p = current_from_previous * Eigen::Vector3d(corner.x, corner.y, 1.0);
-    if (p.z() <= 1e-9) return cv::Rect2d();  // behind the camera: the box is lost
-    x0 = std::min(x0, p.x() / p.z());
-    y0 = std::min(y0, p.y() / p.z());
-    x1 = std::max(x1, p.x() / p.z());
-    y1 = std::max(y1, p.y() / p.z());
-  }
-  return cv::Rect2d(x0, y0, x1 - x0, y1 - y0) & cv::Rect2d(0, 0, size.width, size.height);
-}
-
-}  // namespace
 
 DetectorMaskSource::DetectorMaskSource(std::unique_ptr<PersonDetector> detector, const DetectorOptions& options,
                                        const KltOptions& klt, const HomographyOptions& homography, Executor& executor)
@@ -66,7 +49,9 @@ void DetectorMaskSource::TakeBoxes(const RgbdFrame& frame, MaskPacket* packet) {
   std::vector<Detection> moved;
   for (Detection d : last_) {
     if (!packet->has_motion) break;  // without the motion the boxes cannot follow: dropped
-    d.box = MoveBox(d.box, packet->current_from_previous, frame.gray.size());
+    const std::optional<cv::Rect2d> box = CarryBox(d.box, packet->current_from_previous);
+    if (!box) continue;  // behind the camera: lost
+    d.box = *box & cv::Rect2d(0, 0, frame.gray.cols, frame.gray.rows);
     if (d.box.area() > 0.0) moved.push_back(d);
   }
   last_ = std::move(moved);

@@ -35,12 +35,13 @@ std::string ToString(MaskStatus status);
 struct MaskPacket {
   size_t frame = 0;
   MaskStatus status = MaskStatus::kOff;
-  std::string failure;            // kFailed: the detector's reason
-  cv::Mat mask;                   // CV_8UC1, 255 = dynamic; empty = no mask
-  double dynamic_ratio = 0.0;     // share of `mask`'s pixels
-  int threshold = -1;             // grey level the forward difference was binarised at (kComputed)
-  std::vector<Detection> people;  // kDetected: the detector's boxes, best first
-  int detection_age = -1;         // kDetected: frames since `people` were detected (0: this frame; -1: never)
+  std::string failure;              // kFailed: the detector's reason
+  cv::Mat mask;                     // CV_8UC1, 255 = dynamic; empty = no mask
+  double dynamic_ratio = 0.0;       // share of `mask`'s pixels
+  int threshold = -1;               // grey level the forward difference was binarised at (kComputed)
+  std::vector<Detection> people;    // kDetected: the detector's boxes, best first
+  std::vector<bool> people_moving;  // with the people refinement: each of `people` judged moving
+  int detection_age = -1;           // kDetected: frames since `people` were detected (0: this frame; -1: never)
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;

@@ -14,6 +14,8 @@ namespace dynvo {
 class MaskRefinement {
  public:
   virtual ~MaskRefinement() = default;
+  // Frame t is about to be processed: a refinement may start its own work on it (executor).
+  virtual void Begin(const RgbdFrame& /*frame*/) {}
   // Changes frame t's mask (or its seeds); adds its wall time to `mask->ms`.
   virtual void Refine(const RgbdFrame& frame, MaskPacket* mask) = 0;
   // Frame t was tracked (`tracking`, the local map `map` after it).

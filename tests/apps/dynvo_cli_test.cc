@@ -82,7 +82,11 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"), "features.num_features");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 99"), "beyond the last frame");
-  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set mask_source=detector"), "needs detector.model");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set mask_source=detector --set 'detector.model=\"\"'"),
+                     "needs detector.model");
+  // The default model path (tools/fetch_models.sh), absent here: the detector source cannot run without it.
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set mask_source=detector"),
+                     "detector.model data/models/yolo-fastest-1.1_body.weights: cannot open the file");
   ExpectOneLineError(
       RunTool(dir, "dynvo-cli", run + " --set mask_source=detector --set detector.model=/no/model.weights"),
       "detector.model /no/model.weights: cannot open the file");

@@ -241,16 +241,16 @@ TEST_F(EndToEnd, ThreadsChangeNoResult) {
   }
 }
 
-// timing.csv's last two columns, people and detection_age, one pair per row ("" = none).
+// timing.csv's columns people and detection_age (the last but one and two), one pair per row ("" = none).
 std::vector<std::pair<std::string, std::string>> PeopleColumns(const std::string& out_dir) {
   std::istringstream in(ReadTextFile(out_dir + "/timing.csv"));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line.substr(line.size() - 21), ",people,detection_age");
+  EXPECT_EQ(line.substr(line.size() - 35), ",people,detection_age,people_moving");
   std::vector<std::pair<std::string, std::string>> rows;
   while (std::getline(in, line)) {
-    const size_t age = line.rfind(','), people = line.rfind(',', age - 1);
-    rows.emplace_back(line.substr(people + 1, age - people - 1), line.substr(age + 1));
+    const size_t moving = line.rfind(','), age = line.rfind(',', moving - 1), people = line.rfind(',', age - 1);
+    rows.emplace_back(line.substr(people + 1, age - people - 1), line.substr(age + 1, moving - age - 1));
   }
   return rows;
 }
@@ -289,6 +289,25 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   // the silhouettes are grown by a margin).
   EXPECT_GT(frames_with_people, 80);
   EXPECT_GT(report["mask_quality"]["recall"].get<double>(), 0.8);
+  // The recommended config fuses the same detector with its differencing: the people judged
+  // moving join the mask (here nearly every one: both walk), and recall rises above the
+  // differencing's alone. Without the model it says so once and runs geometric only.
+  const std::string fused = (dir.path() / "fused").string(), geometric = (dir.path() / "geometric").string();
+  RunOn(sequence, "dynvo.json", fused, model, 0);
+  RunOn(sequence, "dynvo.json", geometric, {"detector.model=\"/no/model.weights\""}, 0);
+  const nlohmann::json with = nlohmann::json::parse(ReadTextFile(fused + "/run.json"));
+  const nlohmann::json without = nlohmann::json::parse(ReadTextFile(geometric + "/run.json"));
+  EXPECT_TRUE(with["notices"].empty());
+  ASSERT_EQ(without["notices"].size(), 1u);
+  EXPECT_NE(without["notices"][0].get<std::string>().find("/no/model.weights not found"), std::string::npos);
+  EXPECT_FALSE(without["counts"].contains("detector"));
+  EXPECT_GT(with["mask_quality"]["recall"].get<double>(), without["mask_quality"]["recall"].get<double>() + 0.02);
+  int moving = 0;
+  std::istringstream timing(ReadTextFile(fused + "/timing.csv"));
+  std::string line;
+  std::getline(timing, line);
+  while (std::getline(timing, line)) moving += std::stoi(line.substr(line.rfind(',') + 1));
+  EXPECT_GT(moving, 90);  // of about 180 person-frames
   // Every third frame detected: the two between carry the boxes, one and two frames old.
   std::vector<std::string> every_third = model;
   every_third.push_back("detector.every_frames=3");

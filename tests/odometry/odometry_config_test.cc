@@ -51,7 +51,7 @@ TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMask) {
     ipl.erase(section);
   }
   EXPECT_EQ(paper, ipl) << nlohmann::json::diff(paper, ipl).dump(1);
-  const std::string no_model = LoadError("", {"mask_source=detector"});
+  const std::string no_model = LoadError("", {"mask_source=detector", "detector.model=\"\""});
   EXPECT_NE(no_model.find("mask_source \"detector\" needs detector.model"), std::string::npos) << no_model;
 }
 
@@ -61,7 +61,8 @@ TEST(OdometryConfig, BaselineIsThePaperWithoutItsMask) {
   EXPECT_EQ(paper["mask_source"], "difference");
   EXPECT_EQ(baseline["mask_source"], "none");
   // What only the mask uses is irrelevant without it; every other key must be the same.
-  for (const char* section : {"mask_source", "dynamic_mask", "depth_change", "map_occlusion", "depth_trim"}) {
+  for (const char* section :
+       {"mask_source", "dynamic_mask", "detector", "depth_change", "map_occlusion", "depth_trim"}) {
     paper.erase(section);
     baseline.erase(section);
   }
@@ -79,6 +80,7 @@ TEST(OdometryConfig, TheDefaultsAreTheRecommendedConfig) {
   const OdometryConfig c;
   EXPECT_TRUE(c.depth_change.enabled && c.map_occlusion.enabled && c.depth_trim.enabled);
   EXPECT_GT(c.tracking.new_point_confirmations, 0);
+  EXPECT_EQ(c.detector.model, "data/models/yolo-fastest-1.1_body.weights");  // where tools/fetch_models.sh puts it
 }
 
 TEST(OdometryConfig, EveryKeyIsTheFieldsStructPath) {

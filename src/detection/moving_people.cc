@@ -1,0 +1,83 @@
+#include "detection/moving_people.h"
+
+#include <algorithm>
+
+#include <Eigen/Geometry>
+
+#include "detection/box_motion.h"
+
+namespace dynvo {
+namespace {
+
+double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
+  const double inter = (a & b).area();
+  return inter > 0.0 ? inter / (a.area() + b.area() - inter) : 0.0;
+}
+
+}  // namespace
+
+MovingPeople::MovingPeople(const MovingPeopleOptions& options) : options_(options) {}
+
+MovingPeople::Person* MovingPeople::Match(const cv::Rect2d& box, std::vector<bool>& taken) {
+  Person* best = nullptr;
+  double best_iou = options_.match_iou;
+  for (size_t i = 0; i < people_.size(); ++i) {
+    const double iou = Iou(people_[i].box, box);
+    if (!taken[i] && iou >= best_iou) {
+      best = &people_[i];
+      best_iou = iou;
+    }
+  }
+  if (best != nullptr) taken[static_cast<size_t>(best - people_.data())] = true;
+  return best;
+}
+
+std::optional<double> MovingPeople::Speed(const Person& person) const {
+  if (person.centres.size() < 2) return std::nullopt;
+  const auto& [last_stamp, last] = person.centres.back();
+  for (const auto& [stamp, centre] : person.centres)  // the oldest within the window
+    if (last_stamp - stamp <= options_.speed_window_s && last_stamp - stamp >= 0.5 * options_.speed_window_s)
+      return (last - centre).norm() / (last_stamp - stamp);
+  return std::nullopt;
+}
+
+std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
+                                      const std::optional<Eigen::Matrix3d>& current_from_previous) {
+  for (Person& p : people_) {
+    if (current_from_previous) p.box = CarryBox(p.box, *current_from_previous).value_or(p.box);
+    ++p.missed;
+    ++p.since_evidence;
+    p.pending_centre.reset();
+  }
+  std::vector<bool> taken(people_.size(), false), moving;
+  std::vector<Person> added;
+  for (const PersonEvidence& evidence : people) {
+    Person* person = Match(evidence.box, taken);
+    Person fresh;
+    Person& p = person != nullptr ? *person : fresh;
+    p.box = evidence.box;
+    p.missed = 0;
+    p.pending_centre = evidence.centre_in_camera;
+    const std::optional<double> speed = Speed(p);
+    if (evidence.difference_share >= options_.min_difference_share || (speed && *speed >= options_.min_speed_m_s))
+      p.since_evidence = 0;
+    moving.push_back(p.since_evidence <= options_.hold_frames);
+    if (person == nullptr) added.push_back(fresh);
+  }
+  people_.erase(std::remove_if(people_.begin(), people_.end(),
+                               [&](const Person& p) { return p.missed > options_.forget_frames; }),
+                people_.end());
+  people_.insert(people_.end(), added.begin(), added.end());
+  return moving;
+}
+
+void MovingPeople::Observe(double stamp, const Eigen::Isometry3d& world_from_camera) {
+  for (Person& p : people_) {
+    if (!p.pending_centre) continue;
+    p.centres.emplace_back(stamp, world_from_camera * *p.pending_centre);
+    while (p.centres.size() > 2 && stamp - p.centres.front().first > options_.speed_window_s) p.centres.pop_front();
+    p.pending_centre.reset();
+  }
+}
+
+}  // namespace dynvo

@@ -1,0 +1,64 @@
+#pragma once
+// Which of the people a detector finds are moving: each person is followed over frames (its box
+// carried by the camera's motion and matched by overlap) and judged from geometry, not from
+// being a person. Moving when the compensated frame difference covers part of them, or when
+// their centre moves in the world (camera motion removed by the tracked poses) faster than a
+// walk-in-place: the second catches people walking straight toward or away from the camera,
+// whom differencing cannot see. A person judged moving stays so for a while (hysteresis).
+
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+namespace dynvo {
+
+struct MovingPeopleOptions {
+  double min_difference_share = 0.15;  // moving: the geometric mask covers this share of the person ...
+  double min_speed_m_s = 0.3;          // ... or their centre moves this fast in the world
+  double speed_window_s = 0.3;         // the speed is measured over this much of the person's past
+  int hold_frames = 15;                // a moving person stays moving this many frames after the last evidence
+  double match_iou = 0.3;              // a detection continues the person whose carried box overlaps it this much
+  int forget_frames = 10;              // a person not detected for this many frames is forgotten
+};
+
+// One detected person in frame t.
+struct PersonEvidence {
+  cv::Rect2d box;                                   // image pixels
+  double difference_share = 0.0;                    // share of the person's mask the geometric mask covers
+  std::optional<Eigen::Vector3d> centre_in_camera;  // mean of the person's back-projected pixels
+};
+
+class MovingPeople {
+ public:
+  explicit MovingPeople(const MovingPeopleOptions& options = {});
+
+  // Frame t's people (in order) judged moving (true) or still; `current_from_previous` carries
+  // frame t-1's boxes into frame t (nullopt: not known, boxes stay where they were).
+  std::vector<bool> Judge(const std::vector<PersonEvidence>& people,
+                          const std::optional<Eigen::Matrix3d>& current_from_previous);
+  // Frame t (the one last judged, taken at `stamp`) was tracked to `world_from_camera`: the
+  // people's centres join their pasts.
+  void Observe(double stamp, const Eigen::Isometry3d& world_from_camera);
+
+ private:
+  struct Person {
+    cv::Rect2d box;
+    std::deque<std::pair<double, Eigen::Vector3d>> centres;  // (stamp, world centre), oldest first
+    std::optional<Eigen::Vector3d> pending_centre;           // frame t's, in its camera, until Observe
+    int since_evidence = 1 << 20;
+    int missed = 0;
+  };
+  // The world speed of a person over the window, m/s; nullopt without enough past.
+  std::optional<double> Speed(const Person& person) const;
+  // The person of the last frames continuing `box`, or nullptr.
+  Person* Match(const cv::Rect2d& box, std::vector<bool>& taken);
+
+  MovingPeopleOptions options_;
+  std::vector<Person> people_;
+};
+
+}  // namespace dynvo

@@ -1,0 +1,40 @@
+#pragma once
+// The person detector as a refinement of the differencing mask: the people a detector finds
+// (detection/yolo_detector.h), each cut to its silhouette by depth (detection/person_mask.h),
+// join the mask when they are judged moving from geometry (detection/moving_people.h: the
+// differencing covers part of them, or they move in the world); people judged still keep their
+// features. What differencing finds without a detection (movers that are not people) stays.
+// The detection of frame t runs on the executor beside its differencing.
+
+#include <memory>
+
+#include "core/camera.h"
+#include "core/executor.h"
+#include "detection/moving_people.h"
+#include "detection/person_detector.h"
+#include "detection/person_mask.h"
+#include "pipeline/mask_refinement.h"
+
+namespace dynvo {
+
+class PeopleRefinement : public MaskRefinement {
+ public:
+  // `executor` must outlive the refinement.
+  PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, Executor& executor);
+
+  void Begin(const RgbdFrame& frame) override;
+  // Frame t's moving people join the mask; every person found is listed in `mask->people`.
+  void Refine(const RgbdFrame& frame, MaskPacket* mask) override;
+  // Frame t's pose places its people in the world, for the speed of the next frames.
+  void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) override;
+
+ private:
+  Camera camera_;
+  std::shared_ptr<PersonDetector> detector_;  // shared with the running task
+  Executor& executor_;
+  PersonMaskOptions person_mask_;
+  MovingPeople moving_;
+  Task<std::vector<Detection>> pending_;
+};
+
+}  // namespace dynvo
