@@ -78,7 +78,10 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   last_mask_ = out.mask.mask;
   // 2. The features minus those on the mask (refilled off it).
   out.features = features_.Finish(frame, out.mask);
-  if (next != nullptr) features_.LookAhead(*next);
+  if (next != nullptr) {
+    features_.LookAhead(*next);
+    for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->LookAhead(*next);
+  }
   // 3. The pose from the static features against the local map; keyframes.
   out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed);
   // 4. Local BA after a keyframe from a tracked pose; the tracker goes on from the refined pose.

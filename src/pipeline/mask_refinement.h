@@ -14,8 +14,11 @@ namespace dynvo {
 class MaskRefinement {
  public:
   virtual ~MaskRefinement() = default;
-  // Frame t is about to be processed: a refinement may start its own work on it (executor).
+  // Frame t is about to be processed: a refinement may start its own work on it (executor),
+  // unless its look-ahead already did for the same frame.
   virtual void Begin(const RgbdFrame& /*frame*/) {}
+  // Frame t+1 is loaded and frame t's mask is done: work on frame t+1 may start (executor).
+  virtual void LookAhead(const RgbdFrame& /*next*/) {}
   // Changes frame t's mask (or its seeds); adds its wall time to `mask->ms`.
   virtual void Refine(const RgbdFrame& frame, MaskPacket* mask) = 0;
   // Frame t was tracked (`tracking`, the local map `map` after it).

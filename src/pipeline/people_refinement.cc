@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "pipeline/mask_source.h"
 
 namespace dynvo {
 namespace {
@@ -31,13 +32,27 @@ PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonD
     : camera_(camera), detector_(std::move(detector)), executor_(executor) {}
 
 void PeopleRefinement::Begin(const RgbdFrame& frame) {
-  pending_ = executor_.Submit([detector = detector_, bgr = frame.bgr] { return detector->Detect(bgr); });
+  if (pending_.valid() && SameImage(pending_bgr_, frame.bgr)) return;  // started by the look-ahead
+  LookAhead(frame);
+}
+
+void PeopleRefinement::LookAhead(const RgbdFrame& next) {
+  if (pending_.valid()) {
+    try {
+      pending_.Get();  // the detector runs one frame at a time
+    } catch (const std::exception&) {
+      // a detection nobody takes: its failure is nobody's business
+    }
+  }
+  pending_bgr_ = next.bgr;
+  pending_ = executor_.Submit([detector = detector_, bgr = next.bgr] { return detector->Detect(bgr); });
 }
 
 void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   if (!pending_.valid()) Begin(frame);
   std::vector<Detection> people;
   try {
+    pending_bgr_.release();
     people = pending_.Get();
     mask->detection_age = 0;
   } catch (const std::exception& e) {

@@ -4,7 +4,7 @@
 // join the mask when they are judged moving from geometry (detection/moving_people.h: the
 // differencing covers part of them, or they move in the world); people judged still keep their
 // features. What differencing finds without a detection (movers that are not people) stays.
-// The detection of frame t runs on the executor beside its differencing.
+// The detection of frame t+1 runs on the executor while frame t is tracked.
 
 #include <memory>
 
@@ -23,6 +23,7 @@ class PeopleRefinement : public MaskRefinement {
   PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, Executor& executor);
 
   void Begin(const RgbdFrame& frame) override;
+  void LookAhead(const RgbdFrame& next) override;
   // Frame t's moving people join the mask; every person found is listed in `mask->people`.
   void Refine(const RgbdFrame& frame, MaskPacket* mask) override;
   // Frame t's pose places its people in the world, for the speed of the next frames.
@@ -35,6 +36,7 @@ class PeopleRefinement : public MaskRefinement {
   PersonMaskOptions person_mask_;
   MovingPeople moving_;
   Task<std::vector<Detection>> pending_;
+  cv::Mat pending_bgr_;  // the pixels pending_ detects on
 };
 
 }  // namespace dynvo

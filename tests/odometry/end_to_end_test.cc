@@ -293,7 +293,11 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   // moving join the mask (here nearly every one: both walk), and recall rises above the
   // differencing's alone. Without the model it says so once and runs geometric only.
   const std::string fused = (dir.path() / "fused").string(), geometric = (dir.path() / "geometric").string();
-  RunOn(sequence, "dynvo.json", fused, model, 0);
+  RunOn(sequence, "dynvo.json", fused, model, 3);
+  const std::string fused_in_turn = (dir.path() / "fused_in_turn").string();
+  RunOn(sequence, "dynvo.json", fused_in_turn, model, 1);  // the detection ahead or in turn: the same
+  EXPECT_EQ(ReadTextFile(fused + "/trajectory.txt"), ReadTextFile(fused_in_turn + "/trajectory.txt"));
+  EXPECT_EQ(TimingWithoutTimes(fused), TimingWithoutTimes(fused_in_turn));
   RunOn(sequence, "dynvo.json", geometric, {"detector.model=\"/no/model.weights\""}, 0);
   const nlohmann::json with = nlohmann::json::parse(ReadTextFile(fused + "/run.json"));
   const nlohmann::json without = nlohmann::json::parse(ReadTextFile(geometric + "/run.json"));
