@@ -5,6 +5,7 @@
 // everything in order on the caller. Results never depend on which thread ran a task.
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -77,6 +78,12 @@ class Task {
     std::shared_ptr<internal::PackagedJob<T>> job = std::move(job_);
     job->RunIfUnclaimed();
     return job->future().get();
+  }
+  // Waits at most `timeout` for the task to finish; true when it has (Get then returns at once).
+  // Needs a valid task. A task that no worker has started may not start in time.
+  template <typename Rep, typename Period>
+  bool WaitFor(const std::chrono::duration<Rep, Period>& timeout) const {
+    return job_->future().wait_for(timeout) == std::future_status::ready;
   }
   // Cancels the task when not started, else waits for it, dropping its result or error.
   void Reset() {

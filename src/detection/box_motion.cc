@@ -17,4 +17,16 @@ std::optional<cv::Rect2d> CarryBox(const cv::Rect2d& box, const Eigen::Matrix3d&
   return cv::Rect2d(x0, y0, x1 - x0, y1 - y0);
 }
 
+std::vector<Detection> CarryDetections(const std::vector<Detection>& detections,
+                                       const Eigen::Matrix3d& current_from_previous, const cv::Size& image) {
+  std::vector<Detection> moved;
+  for (Detection d : detections) {
+    const std::optional<cv::Rect2d> box = CarryBox(d.box, current_from_previous);
+    if (!box) continue;
+    d.box = *box & cv::Rect2d(0, 0, image.width, image.height);
+    if (d.box.area() > 0.0) moved.push_back(d);
+  }
+  return moved;
+}
+
 }  // namespace dynvo

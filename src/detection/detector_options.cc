@@ -12,6 +12,7 @@ void DetectorOptions::Check() const {
   RequireOption(nms_threshold > 0.0 && nms_threshold <= 1.0, "detector", "nms_threshold", "in (0, 1]", nms_threshold);
   for (const int id : classes) RequireOption(id >= 0, "detector", "classes", "class ids >= 0", id);
   RequireOption(every_frames >= 1, "detector", "every_frames", ">= 1", every_frames);
+  RequireOption(wait_ms >= 0.0, "detector", "wait_ms", ">= 0 (0 = always wait)", wait_ms);
 }
 
 void BindConfigKeys(const std::string& prefix, DetectorOptions* o, ConfigRegistry* r) {
@@ -25,6 +26,9 @@ void BindConfigKeys(const std::string& prefix, DetectorOptions* o, ConfigRegistr
   r->Bind(prefix + ".every_frames", &o->every_frames,
           "detect on every k-th frame; the frames between carry the last detection by the camera's motion "
           "and cut it again by depth (a slower machine or a bigger model)");
+  r->Bind(prefix + ".wait_ms", &o->wait_ms,
+          "> 0: a frame waits at most this long for its detection, then carries the last one (bounded latency, "
+          "runs no longer deterministic); 0 = always wait");
 }
 
 }  // namespace dynvo

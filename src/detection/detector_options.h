@@ -19,13 +19,15 @@ struct DetectorOptions {
   std::vector<int> classes{0};  // class ids treated as movable (COCO and the body model: 0 = person)
   int every_frames = 1;         // detect on frames whose index is a multiple of this (>= 1); in between
                                 // the last detection is carried by the camera's motion and cut by depth
+  double wait_ms = 0.0;         // > 0: a frame waits at most this long for its detection, then goes on
+                                // with the last one carried (not deterministic); 0 = always wait
 
   // Throws InputError naming the key ("detector.input_size must be ...") when out of range.
   void Check() const;
 };
 
 // The keys under `prefix` ("detector"): model, config, input_size, confidence, nms_threshold, classes,
-// every_frames.
+// every_frames, wait_ms.
 void BindConfigKeys(const std::string& prefix, DetectorOptions* options, ConfigRegistry* registry);
 
 }  // namespace dynvo

@@ -22,6 +22,7 @@ struct StageTimes {
   double pose_ms = 0;          // EPnP RANSAC and Ceres refinement
   double map_ms = 0;           // keyframe insertion and map upkeep
   double local_ba_ms = 0;      // local bundle adjustment (keyframes only)
+  double detector_ms = 0;      // the person detector on this frame, on its own thread (beside tracking)
   double processing_ms = 0;    // everything after loading, wall time
 };
 
@@ -48,8 +49,9 @@ struct FrameRecord {
   bool keyframe = false;
   std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
   int people = -1;                         // people the detector found (-1: no detector)
-  int people_moving = 0;                   // of them, judged moving (people refinement)
+  int people_moving = -1;                  // of them, judged moving (people refinement; -1: not judged)
   int detection_age = -1;                  // frames since they were detected (0: this frame; -1: none yet)
+  std::string detection;                   // detected, carried, failed, timed_out ("" : no detector)
 };
 
 }  // namespace dynvo

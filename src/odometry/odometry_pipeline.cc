@@ -47,8 +47,8 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
     return refinements;
   }
   // The people found join the mask when judged moving.
-  refinements.push_back(
-      std::make_unique<PeopleRefinement>(camera, std::make_unique<YoloDetector>(config.detector), executor));
+  refinements.push_back(std::make_unique<PeopleRefinement>(camera, std::make_unique<YoloDetector>(config.detector),
+                                                            config.detector, executor));
   return refinements;
 }
 
@@ -110,11 +110,14 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.mask_note =
       mask.status == MaskStatus::kFirstFrame ? "first frame: no previous frame to difference" : mask.failure;
   record.dynamic_ratio = mask.dynamic_ratio;
-  if (mask.status == MaskStatus::kDetected || mask.detection_age >= 0) {  // a detector ran
+  if (mask.detection != DetectionStatus::kNone) {  // a detector ran
     record.people = static_cast<int>(mask.people.size());
     record.detection_age = mask.detection_age;
+    record.detection = ToString(mask.detection);
+    record.times.detector_ms = mask.detector_ms;
+    if (mask.people_moving.size() == mask.people.size())  // judged (people refinement)
+      record.people_moving = static_cast<int>(std::count(mask.people_moving.begin(), mask.people_moving.end(), true));
   }
-  record.people_moving = static_cast<int>(std::count(mask.people_moving.begin(), mask.people_moving.end(), true));
   record.mask_threshold = mask.threshold;
   record.times.dynamic_mask_ms = mask.ms + stages.refinement_upkeep_ms;
   const FeatureSplit& split = stages.features.split;

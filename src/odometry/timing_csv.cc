@@ -32,7 +32,8 @@ const char* TimingCsvWriter::Header() {
          "local_ba_ms,processing_ms,features_total,features_kept,features_removed,features_readmitted,"
          "dynamic_ratio,mask_threshold,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,"
          "new_points_rejected,coherent_motion_rejected,keyframe,"
-         "mask_precision,mask_recall,mask_iou,people,detection_age,people_moving";
+         "mask_precision,mask_recall,mask_iou,people,detection_age,people_moving,people_still,detector_ms,"
+         "detector_status";
 }
 
 TimingCsvWriter::TimingCsvWriter(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
@@ -58,9 +59,12 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
   } else {
     out_ << ",,";
   }
+  const bool judged = r.people >= 0 && r.people_moving >= 0;
   out_ << ',' << (r.people >= 0 ? std::to_string(r.people) : std::string()) << ','
        << (r.detection_age >= 0 ? std::to_string(r.detection_age) : std::string()) << ','
-       << (r.people >= 0 ? std::to_string(r.people_moving) : std::string()) << '\n';
+       << (judged ? std::to_string(r.people_moving) : std::string()) << ','
+       << (judged ? std::to_string(r.people - r.people_moving) : std::string()) << ','
+       << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << '\n';
   out_.flush();
   if (!out_) ThrowFileError(path_, 0, "write failed");
 }

@@ -1,6 +1,5 @@
 #include "pipeline/detector_mask_source.h"
 
-#include <exception>
 #include <utility>
 
 #include "core/stopwatch.h"
@@ -11,50 +10,36 @@ namespace dynvo {
 
 DetectorMaskSource::DetectorMaskSource(std::unique_ptr<PersonDetector> detector, const DetectorOptions& options,
                                        const KltOptions& klt, const HomographyOptions& homography, Executor& executor)
-    : detector_(std::move(detector)), options_(options), motion_(klt, homography), executor_(executor) {}
+    : options_(options), motion_(klt, homography), runner_(std::move(detector), executor, options.wait_ms) {}
 
 bool DetectorMaskSource::DetectsOn(const RgbdFrame& frame) const {
   return frame.index % static_cast<size_t>(options_.every_frames) == 0;
 }
 
-void DetectorMaskSource::Start(const RgbdFrame& frame) {
-  if (pending_.valid()) {
-    try {
-      pending_.Get();  // the detector runs one frame at a time
-    } catch (const std::exception&) {
-      // a look-ahead nobody takes: its failure is the taker's business, and there is none
-    }
-  }
-  pending_bgr_ = frame.bgr;
-  pending_ = executor_.Submit([detector = detector_, bgr = frame.bgr] { return detector->Detect(bgr); });
-}
-
 void DetectorMaskSource::LookAhead(const RgbdFrame& /*current*/, const RgbdFrame& next) {
-  if (DetectsOn(next)) Start(next);
+  if (DetectsOn(next)) runner_.Start(next.bgr);
 }
 
 void DetectorMaskSource::TakeBoxes(const RgbdFrame& frame, MaskPacket* packet) {
+  packet->detection = DetectionStatus::kCarried;
   if (DetectsOn(frame)) {
-    if (!pending_.valid() || !SameImage(pending_bgr_, frame.bgr)) Start(frame);
-    pending_bgr_.release();
-    try {
-      last_ = pending_.Get();
+    DetectionOutcome outcome = runner_.Take(frame.bgr);
+    packet->detection = outcome.status;
+    packet->detector_ms = outcome.detector_ms;
+    if (outcome.status == DetectionStatus::kDetected) {
+      last_ = std::move(outcome.people);
       age_ = 0;
       return;
-    } catch (const std::exception& e) {
-      packet->failure = std::string("detector: ") + e.what();  // carried below
     }
+    packet->failure = outcome.failure;  // the last boxes carried below
   }
-  if (age_ < 0) return;  // nothing detected yet
-  std::vector<Detection> moved;
-  for (Detection d : last_) {
-    if (!packet->has_motion) break;  // without the motion the boxes cannot follow: dropped
-    const std::optional<cv::Rect2d> box = CarryBox(d.box, packet->current_from_previous);
-    if (!box) continue;  // behind the camera: lost
-    d.box = *box & cv::Rect2d(0, 0, frame.gray.cols, frame.gray.rows);
-    if (d.box.area() > 0.0) moved.push_back(d);
-  }
-  last_ = std::move(moved);
+  if (age_ >= 0) CarryBoxes(frame, *packet);  // else nothing detected yet
+}
+
+void DetectorMaskSource::CarryBoxes(const RgbdFrame& frame, const MaskPacket& packet) {
+  // without the motion the boxes cannot follow: dropped
+  last_ = packet.has_motion ? CarryDetections(last_, packet.current_from_previous, frame.gray.size())
+                            : std::vector<Detection>();
   ++age_;
 }
 

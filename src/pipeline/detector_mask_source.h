@@ -2,9 +2,9 @@
 // The person detector as a mask source (the second paper, IPL-SLAM): the movable objects of a
 // frame found by a detector (detection/yolo_detector.h), each box cut to its person by depth
 // (detection/person_mask.h); every person found leaves the features. The detection of frame
-// t+1 runs on the executor while frame t is tracked. With detector.every_frames = k the
-// detector runs on every k-th frame; the frames between, and a frame whose detection failed,
-// carry the last boxes by the camera's motion (KLT homography) and cut them again by their own
+// t+1 runs on the executor while frame t is tracked (detection/detection_runner.h). With
+// detector.every_frames = k the detector runs on every k-th frame; the frames between, and a
+// frame whose detection failed or timed out, carry the last boxes by the camera's motion (KLT homography) and cut them again by their own
 // depth, with the detection's age in frames.
 
 #include <memory>
@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/executor.h"
+#include "detection/detection_runner.h"
 #include "detection/detector_options.h"
 #include "detection/person_detector.h"
 #include "detection/person_mask.h"
@@ -29,25 +30,23 @@ class DetectorMaskSource : public MaskSource {
                      const HomographyOptions& homography, Executor& executor);
 
   // kDetected: the people's boxes (detected this frame or carried, MaskPacket::detection_age)
-  // and the union of their masks (empty: nobody); a detector failure is in `failure`, with
-  // the last boxes carried.
+  // and the union of their masks (empty: nobody); a detector failure or time-out is in
+  // `failure`, with the last boxes carried.
   MaskPacket Compute(const MaskSourceInput& input) override;
   void LookAhead(const RgbdFrame& current, const RgbdFrame& next) override;
 
  private:
   bool DetectsOn(const RgbdFrame& frame) const;
-  void Start(const RgbdFrame& frame);
   // Frame t's boxes into `packet`: the detection of frame t, else (or when it fails) the last
   // boxes moved by the packet's homography.
   void TakeBoxes(const RgbdFrame& frame, MaskPacket* packet);
+  // The last boxes moved into `frame` by the packet's homography (dropped without one).
+  void CarryBoxes(const RgbdFrame& frame, const MaskPacket& packet);
 
-  std::shared_ptr<PersonDetector> detector_;  // shared with the running task
   DetectorOptions options_;
   PersonMaskOptions person_mask_;
   FrameMotion motion_;
-  Executor& executor_;
-  Task<std::vector<Detection>> pending_;
-  cv::Mat pending_bgr_;          // the pixels pending_ detects on
+  DetectionRunner runner_;
   std::vector<Detection> last_;  // the boxes of the last frame
   int age_ = -1;                 // frames since last_ was detected (-1: never)
 };

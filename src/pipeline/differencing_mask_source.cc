@@ -1,8 +1,10 @@
 #include "pipeline/differencing_mask_source.h"
-#include "core/stopwatch.h"
 
 #include <chrono>
 #include <utility>
+
+#include "core/same_image.h"
+#include "core/stopwatch.h"
 
 namespace dynvo {
 DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "core/same_image.h"
 #include "core/stopwatch.h"
 #include "dynamic_mask/background_fill.h"
 #include "dynamic_mask/mask_morphology.h"

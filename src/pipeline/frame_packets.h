@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "detection/detection_runner.h"
 #include "detection/person_detector.h"
 #include "features/feature_filter.h"
 #include "mapping/local_mapper.h"
@@ -35,13 +36,15 @@ std::string ToString(MaskStatus status);
 struct MaskPacket {
   size_t frame = 0;
   MaskStatus status = MaskStatus::kOff;
-  std::string failure;              // kFailed: the detector's reason
+  std::string failure;              // kFailed: why; with a detector: its failure or time-out
   cv::Mat mask;                     // CV_8UC1, 255 = dynamic; empty = no mask
   double dynamic_ratio = 0.0;       // share of `mask`'s pixels
   int threshold = -1;               // grey level the forward difference was binarised at (kComputed)
   std::vector<Detection> people;    // kDetected: the detector's boxes, best first
   std::vector<bool> people_moving;  // with the people refinement: each of `people` judged moving
   int detection_age = -1;           // kDetected: frames since `people` were detected (0: this frame; -1: never)
+  DetectionStatus detection = DetectionStatus::kNone;  // what became of this frame's detection
+  double detector_ms = 0.0;         // the detector's own wall time on this frame (on its thread)
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;

@@ -8,8 +8,4 @@ MaskPacket NoMaskSource::Compute(const MaskSourceInput& input) {
   return packet;
 }
 
-bool SameImage(const cv::Mat& a, const cv::Mat& b) {
-  return !a.empty() && a.data == b.data && a.size() == b.size() && a.step == b.step && a.type() == b.type();
-}
-
 }  // namespace dynvo

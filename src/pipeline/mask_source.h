@@ -36,7 +36,4 @@ class NoMaskSource : public MaskSource {
   MaskPacket Compute(const MaskSourceInput& input) override;
 };
 
-// True when both headers view the same pixels (one decoded frame handed to two calls).
-bool SameImage(const cv::Mat& a, const cv::Mat& b);
-
 }  // namespace dynvo

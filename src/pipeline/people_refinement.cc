@@ -1,11 +1,10 @@
 #include "pipeline/people_refinement.h"
 
-#include <exception>
 #include <string>
 #include <utility>
 
 #include "core/stopwatch.h"
-#include "pipeline/mask_source.h"
+#include "detection/box_motion.h"
 
 namespace dynvo {
 namespace {
@@ -28,36 +27,34 @@ std::optional<Eigen::Vector3d> MaskCentre(const cv::Mat& mask, const cv::Mat& de
 
 }  // namespace
 
-PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, Executor& executor)
-    : camera_(camera), detector_(std::move(detector)), executor_(executor) {}
+PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector,
+                                   const DetectorOptions& options, Executor& executor)
+    : camera_(camera), runner_(std::move(detector), executor, options.wait_ms) {}
 
-void PeopleRefinement::Begin(const RgbdFrame& frame) {
-  if (pending_.valid() && SameImage(pending_bgr_, frame.bgr)) return;  // started by the look-ahead
-  LookAhead(frame);
-}
+void PeopleRefinement::Begin(const RgbdFrame& frame) { runner_.Start(frame.bgr); }
 
-void PeopleRefinement::LookAhead(const RgbdFrame& next) {
-  if (pending_.valid()) {
-    try {
-      pending_.Get();  // the detector runs one frame at a time
-    } catch (const std::exception&) {
-      // a detection nobody takes: its failure is nobody's business
-    }
+void PeopleRefinement::LookAhead(const RgbdFrame& next) { runner_.Start(next.bgr); }
+
+void PeopleRefinement::TakePeople(const RgbdFrame& frame, MaskPacket* mask) {
+  DetectionOutcome outcome = runner_.Take(frame.bgr);
+  mask->detection = outcome.status;
+  mask->detector_ms = outcome.detector_ms;
+  if (outcome.status == DetectionStatus::kDetected) {
+    last_people_ = std::move(outcome.people);
+    age_ = 0;
+  } else {
+    if (mask->failure.empty()) mask->failure = outcome.failure;
+    last_people_ = mask->has_motion && age_ >= 0
+                       ? CarryDetections(last_people_, mask->current_from_previous, frame.gray.size())
+                       : std::vector<Detection>();
+    if (age_ >= 0) ++age_;
   }
-  pending_bgr_ = next.bgr;
-  pending_ = executor_.Submit([detector = detector_, bgr = next.bgr] { return detector->Detect(bgr); });
+  mask->detection_age = age_;
 }
 
 void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
-  if (!pending_.valid()) Begin(frame);
-  std::vector<Detection> people;
-  try {
-    pending_bgr_.release();
-    people = pending_.Get();
-    mask->detection_age = 0;
-  } catch (const std::exception& e) {
-    if (mask->failure.empty()) mask->failure = std::string("detector: ") + e.what();
-  }
+  TakePeople(frame, mask);
+  const std::vector<Detection>& people = last_people_;
   const auto start = SteadyClock::now();
   std::vector<cv::Mat> silhouettes;
   std::vector<PersonEvidence> evidence;
@@ -75,7 +72,7 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
     if (!moving[i]) continue;
     mask->Join(silhouettes[i]);
   }
-  mask->people = std::move(people);
+  mask->people = people;
   mask->people_moving = moving;
   mask->ms += MillisecondsSince(start);
 }

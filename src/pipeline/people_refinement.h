@@ -10,6 +10,8 @@
 
 #include "core/camera.h"
 #include "core/executor.h"
+#include "detection/detection_runner.h"
+#include "detection/detector_options.h"
 #include "detection/moving_people.h"
 #include "detection/person_detector.h"
 #include "detection/person_mask.h"
@@ -19,24 +21,29 @@ namespace dynvo {
 
 class PeopleRefinement : public MaskRefinement {
  public:
-  // `executor` must outlive the refinement.
-  PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, Executor& executor);
+  // `options` (detector.wait_ms) must have passed Check(); `executor` must outlive the refinement.
+  PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, const DetectorOptions& options,
+                   Executor& executor);
 
   void Begin(const RgbdFrame& frame) override;
   void LookAhead(const RgbdFrame& next) override;
   // Frame t's moving people join the mask; every person found is listed in `mask->people`.
+  // When the detection failed or timed out, the last frame's people are carried by the mask's
+  // homography.
   void Refine(const RgbdFrame& frame, MaskPacket* mask) override;
   // Frame t's pose places its people in the world, for the speed of the next frames.
   void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) override;
 
  private:
+  // Frame t's people into `mask` (detection status, age, failure) and last_people_.
+  void TakePeople(const RgbdFrame& frame, MaskPacket* mask);
+
   Camera camera_;
-  std::shared_ptr<PersonDetector> detector_;  // shared with the running task
-  Executor& executor_;
+  DetectionRunner runner_;
   PersonMaskOptions person_mask_;
   MovingPeople moving_;
-  Task<std::vector<Detection>> pending_;
-  cv::Mat pending_bgr_;  // the pixels pending_ detects on
+  std::vector<Detection> last_people_;  // the last frame's people
+  int age_ = -1;                        // frames since last_people_ were detected (-1: never)
 };
 
 }  // namespace dynvo

@@ -27,6 +27,12 @@ TEST(DetectorOptions, CheckNamesTheKey) {
   options = {};
   options.classes = {0, -1};
   EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.every_frames = 0;
+  EXPECT_THROW(options.Check(), InputError);
+  options = {};
+  options.wait_ms = -1.0;
+  EXPECT_THROW(options.Check(), InputError);
 }
 
 TEST(DetectorOptions, KeysAreTheStructPaths) {
@@ -36,6 +42,8 @@ TEST(DetectorOptions, KeysAreTheStructPaths) {
   registry.ApplyOverride("detector.classes=[0,2]");
   registry.ApplyOverride("detector.model=m.onnx");
   registry.ApplyOverride("detector.input_size=416");
+  registry.ApplyOverride("detector.wait_ms=20");
+  EXPECT_EQ(options.wait_ms, 20.0);
   EXPECT_EQ(options.classes, (std::vector<int>{0, 2}));
   EXPECT_EQ(options.model, "m.onnx");
   EXPECT_EQ(options.input_size, 416);

@@ -241,18 +241,23 @@ TEST_F(EndToEnd, ThreadsChangeNoResult) {
   }
 }
 
-// timing.csv's columns people and detection_age (the last but one and two), one pair per row ("" = none).
-std::vector<std::pair<std::string, std::string>> PeopleColumns(const std::string& out_dir) {
+// timing.csv's column `name`, one cell per row ("" = none).
+std::vector<std::string> TimingColumn(const std::string& out_dir, const std::string& name) {
   std::istringstream in(ReadTextFile(out_dir + "/timing.csv"));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line.substr(line.size() - 35), ",people,detection_age,people_moving");
-  std::vector<std::pair<std::string, std::string>> rows;
+  std::istringstream names(line);
+  size_t index = 0;
+  for (std::string cell; std::getline(names, cell, ',') && cell != name;) ++index;
+  std::vector<std::string> cells;
   while (std::getline(in, line)) {
-    const size_t moving = line.rfind(','), age = line.rfind(',', moving - 1), people = line.rfind(',', age - 1);
-    rows.emplace_back(line.substr(people + 1, age - people - 1), line.substr(age + 1, moving - age - 1));
+    std::vector<std::string> row;
+    std::istringstream fields(line + ",");
+    for (std::string cell; std::getline(fields, cell, ',');) row.push_back(cell);
+    EXPECT_LT(index, row.size()) << name << " not in " << out_dir << "/timing.csv";
+    cells.push_back(index < row.size() ? row[index] : "");
   }
-  return rows;
+  return cells;
 }
 
 // Two articulated photo people walking 1-3 m from the camera, in view from the first frame (the
@@ -278,10 +283,10 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   const nlohmann::json report = nlohmann::json::parse(ReadTextFile(ahead + "/run.json"));
   EXPECT_EQ(report["status"], "completed");
   int frames_with_people = 0;
-  for (const auto& [people, age] : PeopleColumns(ahead)) {
-    EXPECT_EQ(age, "0");  // detected on every frame
-    frames_with_people += people != "0" ? 1 : 0;
-  }
+  for (const std::string& people : TimingColumn(ahead, "people")) frames_with_people += people != "0" ? 1 : 0;
+  for (const std::string& age : TimingColumn(ahead, "detection_age")) EXPECT_EQ(age, "0");  // every frame detected
+  for (const std::string& status : TimingColumn(ahead, "detector_status")) EXPECT_EQ(status, "detected");
+  for (const std::string& moving : TimingColumn(ahead, "people_moving")) EXPECT_EQ(moving, "");  // nobody judged
   EXPECT_EQ(report["counts"]["detector"]["frames_detected"], 90);
   EXPECT_EQ(report["counts"]["detector"]["failures"], 0);
   EXPECT_EQ(report["counts"]["detector"]["frames_with_people"], frames_with_people);
@@ -306,21 +311,27 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   EXPECT_NE(without["notices"][0].get<std::string>().find("/no/model.weights not found"), std::string::npos);
   EXPECT_FALSE(without["counts"].contains("detector"));
   EXPECT_GT(with["mask_quality"]["recall"].get<double>(), without["mask_quality"]["recall"].get<double>() + 0.02);
-  int moving = 0;
-  std::istringstream timing(ReadTextFile(fused + "/timing.csv"));
-  std::string line;
-  std::getline(timing, line);
-  while (std::getline(timing, line)) moving += std::stoi(line.substr(line.rfind(',') + 1));
+  int moving = 0, judged = 0;
+  const std::vector<std::string> people = TimingColumn(fused, "people"), still = TimingColumn(fused, "people_still");
+  const std::vector<std::string> moving_cells = TimingColumn(fused, "people_moving");
+  for (size_t i = 0; i < people.size(); ++i) {
+    moving += std::stoi(moving_cells[i]);
+    judged += std::stoi(moving_cells[i]) + std::stoi(still[i]);
+    EXPECT_EQ(std::stoi(moving_cells[i]) + std::stoi(still[i]), std::stoi(people[i])) << "frame " << i;
+  }
   EXPECT_GT(moving, 90);  // of about 180 person-frames
+  EXPECT_GT(judged, 150);
   // Every third frame detected: the two between carry the boxes, one and two frames old.
   std::vector<std::string> every_third = model;
   every_third.push_back("detector.every_frames=3");
   const std::string third = (dir.path() / "third").string();
   RunOn(sequence, "ipl.json", third, every_third, 0);
-  const std::vector<std::pair<std::string, std::string>> carried = PeopleColumns(third);
-  ASSERT_EQ(carried.size(), 90u);
-  for (size_t i = 0; i < carried.size(); ++i) {
-    EXPECT_EQ(carried[i].second, std::to_string(i % 3)) << "frame " << i;
+  const std::vector<std::string> ages = TimingColumn(third, "detection_age");
+  const std::vector<std::string> statuses = TimingColumn(third, "detector_status");
+  ASSERT_EQ(ages.size(), 90u);
+  for (size_t i = 0; i < ages.size(); ++i) {
+    EXPECT_EQ(ages[i], std::to_string(i % 3)) << "frame " << i;
+    EXPECT_EQ(statuses[i], i % 3 == 0 ? "detected" : "carried") << "frame " << i;
   }
 }
 

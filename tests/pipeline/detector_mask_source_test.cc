@@ -2,9 +2,11 @@
 // each box cut to its person by depth, what lies beyond the boxes untouched; the detection run
 // ahead on workers gives what it gives in turn. With a scripted detector on a panning camera:
 // boxes carried between detections follow the camera, with their age; a failing detector
-// leaves the frames going with the carried boxes and the reason.
+// leaves the frames going with the carried boxes and the reason, and so does one stuck past
+// the wait budget.
 
 #include <algorithm>
+#include <future>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -137,8 +139,45 @@ TEST(DetectorMaskSource, AFailingDetectorLeavesTheFramesGoingWithTheCarriedBoxes
     const bool failed = i == 1 || i == 2;
     EXPECT_EQ(packet.failure, failed ? "detector: scripted failure" : "") << "frame " << i;
     EXPECT_EQ(packet.detection_age, failed ? i : 0) << "frame " << i;
+    EXPECT_EQ(packet.detection, failed ? DetectionStatus::kFailed : DetectionStatus::kDetected) << "frame " << i;
   }
   EXPECT_EQ(calls, 4);  // each frame detected once, ahead on a worker after the first
+}
+
+// A detector stuck on its second call until released.
+class StuckDetector : public PersonDetector {
+ public:
+  explicit StuckDetector(std::shared_future<void> released) : released_(std::move(released)) {}
+  std::vector<Detection> Detect(const cv::Mat& /*bgr*/) override {
+    if (calls_++ == 1) released_.wait();
+    return {{cv::Rect2d(300, 100, 80, 200), 0.9, 0}};
+  }
+
+ private:
+  std::shared_future<void> released_;
+  int calls_ = 0;
+};
+
+TEST(DetectorMaskSource, WithAWaitBudgetAStuckDetectorLeavesTheFramesGoingWithTheCarriedBoxes) {
+  std::promise<void> release;
+  DetectorOptions options;
+  options.wait_ms = 5.0;
+  Executor executor(2);
+  DetectorMaskSource source(std::make_unique<StuckDetector>(release.get_future().share()), options, KltOptions{},
+                            HomographyOptions{}, executor);
+  std::vector<RgbdFrame> frames;
+  for (int i = 0; i < 3; ++i) frames.push_back(test::PanningFrame(i, false));
+  const std::vector<std::string> failures = {"", "detector: not done within detector.wait_ms",
+                                             "detector: still busy with an earlier frame"};
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const MaskPacket packet = ComputeOn(source, frames[i]);
+    EXPECT_EQ(packet.detection, i == 0 ? DetectionStatus::kDetected : DetectionStatus::kTimedOut) << "frame " << i;
+    EXPECT_EQ(packet.failure, failures[i]) << "frame " << i;
+    EXPECT_EQ(packet.detection_age, static_cast<int>(i)) << "frame " << i;
+    ASSERT_EQ(packet.people.size(), 1u) << "frame " << i;  // frame 0's box, carried with the pan
+    EXPECT_NEAR(packet.people[0].box.x, 300.0 - 6.0 * static_cast<double>(i), 0.5) << "frame " << i;
+  }
+  release.set_value();
 }
 
 }  // namespace
