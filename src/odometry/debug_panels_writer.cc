@@ -13,6 +13,7 @@
 namespace dynvo {
 namespace {
 
+// `image` as a BGR tile of `size` (grey images converted, a dark tile for an empty one).
 cv::Mat AsBgr(const cv::Mat& image, cv::Size size) {
   cv::Mat out;
   if (image.empty()) return cv::Mat(size, CV_8UC3, cv::Scalar(40, 40, 40));
@@ -23,6 +24,9 @@ cv::Mat AsBgr(const cv::Mat& image, cv::Size size) {
   } else {
     out = image.clone();
   }
+  // The differencing may run on a pyramid level (dynamic_mask.difference_level): its images are
+  // scaled up to the frame's tile.
+  if (out.size() != size) cv::resize(out, out, size, 0.0, 0.0, cv::INTER_NEAREST);
   return out;
 }
 
@@ -67,17 +71,24 @@ cv::Mat DrawFeatures(const cv::Mat& bgr, const std::vector<DebugFeature>& featur
   return canvas;
 }
 
-// Frame t with the detector's boxes (score above each) and the people's mask tinted red.
+// Frame t with the mask tinted red and the detector's boxes with their score and state: red
+// for a person judged moving, green for one judged still, yellow when nobody judges (mask
+// source detector: every person is masked).
 cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
   cv::Mat canvas = bgr.clone();
   if (!mask.mask.empty()) canvas.setTo(cv::Scalar(0, 0, 255), mask.mask);
   cv::addWeighted(bgr, 0.6, canvas, 0.4, 0.0, canvas);
-  char label[32];
-  for (const Detection& person : mask.people) {
-    cv::rectangle(canvas, person.box, cv::Scalar(0, 255, 255), 2);
-    std::snprintf(label, sizeof(label), "%.2f", person.score);
-    cv::putText(canvas, label, cv::Point(person.box.tl()) + cv::Point(2, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5,
-                cv::Scalar(0, 255, 255), 1);
+  const bool judged = mask.people_moving.size() == mask.people.size();
+  char label[48];
+  for (size_t i = 0; i < mask.people.size(); ++i) {
+    const Detection& person = mask.people[i];
+    const char* state = !judged ? "" : mask.people_moving[i] ? " moving" : " still";
+    const cv::Scalar color = !judged                 ? cv::Scalar(0, 255, 255)
+                             : mask.people_moving[i] ? cv::Scalar(0, 0, 255)
+                                                     : cv::Scalar(0, 200, 0);
+    cv::rectangle(canvas, person.box, color, 2);
+    std::snprintf(label, sizeof(label), "%.2f%s", person.score, state);
+    cv::putText(canvas, label, cv::Point(person.box.tl()) + cv::Point(2, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5, color, 1);
   }
   return canvas;
 }
@@ -139,7 +150,9 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
       {"background", processed.stages.features.described},
       {"depth_change", mask.change_seeds},
       {"map_occlusion", mask.map_occlusion},
-      {"map_occlusion_candidates", mask.map_occlusion_candidates}};
+      {"map_occlusion_candidates", mask.map_occlusion_candidates},
+      {"detections", !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask)
+                                                                            : cv::Mat()}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

@@ -65,8 +65,11 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
-  int detector_frames = 0, detected_frames = 0, frames_with_people = 0, detector_failures = 0;  // mask source detector
+  // With a detector: frames, person-frames (found, judged moving, judged still), failures and time-outs.
+  int detector_frames = 0, detected_frames = 0, frames_with_people = 0, detector_failures = 0, detector_timeouts = 0;
+  long long people = 0, people_moving = 0, people_still = 0;
   long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0, coherent_motion_rejected = 0;
+  long long points_believed_dynamic = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -85,20 +88,29 @@ struct RunTally {
     keyframes += r.keyframe;
     mask_computed += r.mask_ok;
     mask_failed += !r.mask_ok && !r.mask_note.empty();
-    if (r.people >= 0) {
-      ++detector_frames;
-      detected_frames += r.detection_age == 0;
-      frames_with_people += r.people > 0;
-      detector_failures += !r.mask_note.empty();
-    }
+    if (r.people >= 0) AddDetector(r);
     features_removed += r.features_removed;
     features_readmitted += r.features_readmitted;
     new_points_rejected += r.new_points_rejected;
     coherent_motion_rejected += r.coherent_motion_rejected;
+    points_believed_dynamic += r.points_believed_dynamic;
     if (r.mask_quality) {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
     }
+  }
+
+  void AddDetector(const FrameRecord& r) {
+    ++detector_frames;
+    detected_frames += r.detection_age == 0;
+    frames_with_people += r.people > 0;
+    detector_failures += r.detection == "failed";
+    detector_timeouts += r.detection == "timed_out";
+    stages["detector_ms"].push_back(r.times.detector_ms);
+    people += r.people;
+    if (r.people_moving < 0) return;  // nobody judged
+    people_moving += r.people_moving;
+    people_still += r.people - r.people_moving;
   }
 };
 
@@ -141,11 +153,16 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
                       {"features_removed", tally.features_removed},
                       {"features_readmitted", tally.features_readmitted},
                       {"new_points_rejected", tally.new_points_rejected},
-                      {"coherent_motion_rejected", tally.coherent_motion_rejected}};
+                      {"coherent_motion_rejected", tally.coherent_motion_rejected},
+                      {"points_believed_dynamic", tally.points_believed_dynamic}};
   if (tally.detector_frames > 0)
     report["counts"]["detector"] = {{"frames_detected", tally.detected_frames},
                                     {"frames_with_people", tally.frames_with_people},
-                                    {"failures", tally.detector_failures}};
+                                    {"failures", tally.detector_failures},
+                                    {"timed_out", tally.detector_timeouts},
+                                    {"people", tally.people},
+                                    {"people_moving", tally.people_moving},
+                                    {"people_still", tally.people_still}};
   nlohmann::json stages;
   for (const auto& [name, values] : tally.stages) stages[name] = Summary(values);
   report["time"] = {{"processing_ms", Summary(tally.processing)},

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
 #include "dataset/text_lines.h"
@@ -31,8 +32,9 @@ std::string ConfigPath(const std::string& name) { return std::string(DYNVO_SOURC
 
 // Runs dynvo-cli's job on `sequence` with `config` (and `overrides`) into `out_dir`.
 void RunOn(const std::string& sequence, const std::string& config, const std::string& out_dir,
-           const std::vector<std::string>& overrides, int threads) {
+           const std::vector<std::string>& overrides, int threads, const std::vector<size_t>& debug_frames = {}) {
   RunRequest request;
+  request.debug_frames = debug_frames;
   request.dataset = sequence;
   request.config_path = ConfigPath(config);
   request.overrides = overrides;
@@ -298,7 +300,8 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   // moving join the mask (here nearly every one: both walk), and recall rises above the
   // differencing's alone. Without the model it says so once and runs geometric only.
   const std::string fused = (dir.path() / "fused").string(), geometric = (dir.path() / "geometric").string();
-  RunOn(sequence, "dynvo.json", fused, model, 3);
+  RunOn(sequence, "dynvo.json", fused, model, 3, {45});
+  EXPECT_TRUE(std::filesystem::exists(fused + "/debug/frame_000045_detections.png"));  // states drawn
   const std::string fused_in_turn = (dir.path() / "fused_in_turn").string();
   RunOn(sequence, "dynvo.json", fused_in_turn, model, 1);  // the detection ahead or in turn: the same
   EXPECT_EQ(ReadTextFile(fused + "/trajectory.txt"), ReadTextFile(fused_in_turn + "/trajectory.txt"));
@@ -321,6 +324,12 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   }
   EXPECT_GT(moving, 90);  // of about 180 person-frames
   EXPECT_GT(judged, 150);
+  EXPECT_EQ(with["counts"]["detector"]["people"], judged);
+  EXPECT_EQ(with["counts"]["detector"]["people_moving"], moving);
+  EXPECT_EQ(with["counts"]["detector"]["people_still"], judged - moving);
+  EXPECT_EQ(with["counts"]["detector"]["timed_out"], 0);
+  EXPECT_TRUE(with["time"]["stages"].contains("detector_ms"));
+  EXPECT_FALSE(without["time"]["stages"].contains("detector_ms"));
   // Every third frame detected: the two between carry the boxes, one and two frames old.
   std::vector<std::string> every_third = model;
   every_third.push_back("detector.every_frames=3");
@@ -417,6 +426,13 @@ TEST_F(EndToEnd, DebugFramesWriteThePanels) {
   }
   EXPECT_GT(rows, 500);
   EXPECT_GT(inliers, 100);
+  // The recommended config differences at half size: its panels are scaled to the frame's tiles.
+  request.config_path = ConfigPath("dynvo.json");
+  request.out_dir = (dir_->path() / "debug_run_recommended").string();
+  RunOdometry(request);
+  const cv::Mat panels = cv::imread(request.out_dir + "/debug/frame_000040_panels.png");
+  EXPECT_EQ(panels.cols, 3 * 640);
+  EXPECT_EQ(panels.rows, 2 * 480);
 }
 
 }  // namespace
