@@ -4,8 +4,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <map>
-#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -144,38 +142,26 @@ std::vector<Residual> CollectResiduals(const std::deque<Keyframe>& keyframes, co
   return residuals;
 }
 
-// The variables of the problem: the used keyframes' poses and the points (with the weight of
-// each point's residuals, MapPoint::static_weight).
+// The variables of the problem: the used keyframes' poses and the points.
 struct BaState {
   std::vector<PoseBlock> poses;
   std::vector<Eigen::Vector3d> points;
-  std::vector<double> weights;
 };
 
-// One Ceres solve over the active residuals (Huber loss scaled by the point's weight, fixed
-// keyframes constant). Returns
+// One Ceres solve over the active residuals (Huber loss, fixed keyframes constant). Returns
 // false with report->failure set when Ceres gives no usable solution; `*solved` is false when
 // no residual was active (nothing to solve).
 bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, double bf, const BaWindow& w,
                 const std::vector<Residual>& residuals, const std::vector<uint8_t>& active,
                 const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report, bool* solved) {
-  // The losses outlive the problem: one Huber loss shared by all residuals, scaled for the
-  // points weighted below 1.
-  ceres::HuberLoss huber(options.huber_delta_px);
-  std::map<size_t, std::unique_ptr<ceres::ScaledLoss>> scaled;
   ceres::Problem::Options problem_options;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
+  // One loss object shared by all residuals; the problem deletes it once.
+  ceres::LossFunction* loss = new ceres::HuberLoss(options.huber_delta_px);
   for (size_t i = 0; i < residuals.size(); ++i) {
     if (!active[i]) continue;
     const Residual& r = residuals[i];
-    ceres::LossFunction* loss = &huber;
-    if (state->weights[r.point] < 1.0) {
-      std::unique_ptr<ceres::ScaledLoss>& point_loss = scaled[r.point];
-      if (!point_loss)
-        point_loss = std::make_unique<ceres::ScaledLoss>(&huber, state->weights[r.point], ceres::DO_NOT_TAKE_OWNERSHIP);
-      loss = point_loss.get();
-    }
     const KeyframeObservation& obs = keyframes[r.keyframe].observations[r.observation];
     ceres::CostFunction* cost =
         bf > 0.0 ? new RgbdReprojectionCost(obs.pixel, obs.depth, bf, camera.fx, camera.fy, camera.cx, camera.cy)
@@ -184,7 +170,10 @@ bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, dou
                              state->points[r.point].data());
   }
   *solved = problem.NumResidualBlocks() > 0;
-  if (!*solved) return true;
+  if (!*solved) {
+    delete loss;
+    return true;
+  }
   for (size_t k = 0; k < keyframes.size(); ++k) {
     if (!w.used[k] || !problem.HasParameterBlock(state->poses[k].q)) continue;
     problem.SetManifold(state->poses[k].q, new ceres::EigenQuaternionManifold);
@@ -261,10 +250,7 @@ BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& cam
   state.poses.resize(n);
   for (size_t k = 0; k < n; ++k)
     if (w.used[k]) state.poses[k] = ToBlock(keyframes[k].camera_from_world);
-  for (int64_t id : point_ids) {
-    state.points.push_back(map.FindPoint(id)->position_in_world);
-    state.weights.push_back(map.FindPoint(id)->static_weight);
-  }
+  for (int64_t id : point_ids) state.points.push_back(map.FindPoint(id)->position_in_world);
   double initial_sq = 0.0;
   for (const Residual& r : residuals)
     initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, state.points[r.point],

@@ -91,13 +91,6 @@ void LocalMap::Confirm(int64_t point_id) {
   if (it != points_.end() && it->second.unconfirmed_frames > 0) --it->second.unconfirmed_frames;
 }
 
-void LocalMap::SetStaticBelief(int64_t point_id, double evidence, double weight) {
-  auto it = points_.find(point_id);
-  if (it == points_.end()) return;
-  it->second.static_evidence = evidence;
-  it->second.static_weight = weight;
-}
-
 void LocalMap::SetAppearance(int64_t point_id, const cv::Mat& descriptor, float angle_deg) {
   CheckDescriptor(descriptor, "SetAppearance");
   auto it = points_.find(point_id);

@@ -56,9 +56,6 @@ class LocalMap {
   // One frame confirmed the point: its unconfirmed_frames drops by one, down to 0 (no-op for an
   // unknown id).
   void Confirm(int64_t point_id);
-  // Sets a point's evidence of being static and the weight that follows from it
-  // (mapping/static_belief.h; no-op for an unknown id).
-  void SetStaticBelief(int64_t point_id, double evidence, double weight);
   // Replaces a point's descriptor and its ORB angle (no-op for an unknown id).
   void SetAppearance(int64_t point_id, const cv::Mat& descriptor, float angle_deg);
   // Moves a point (no-op for an unknown id).

@@ -18,8 +18,6 @@ struct MapPoint {
   int64_t last_seen_frame = -1;  // index of the last frame it was matched in
   int unconfirmed_frames = 0;    // frames that must still confirm it before tracking trusts it
                                  // (0 = trusted; see tracking/new_point_confirmation.h)
-  double static_evidence = 0.0;  // log-odds evidence of being static, 0 = none (mapping/static_belief.h) ...
-  double static_weight = 1.0;    // ... and the weight of its residuals in pose refinement and local BA, (0, 1]
 };
 
 }  // namespace dynvo

@@ -37,7 +37,6 @@ struct FrameRecord {
   int features_readmitted = 0;       // removed features verified static that rejoined the pose
   int new_points_rejected = 0;       // matches to unconfirmed map points left out of the pose
   int coherent_motion_rejected = 0;  // pose inliers that moved with their neighbours
-  int points_believed_dynamic = 0;   // map points that left the map believed dynamic
   bool mask_ok = false;              // a dynamic mask was computed this frame
   std::string mask_note;             // why not, when the mask stage is on and failed
   double dynamic_ratio = 0;          // share of pixels marked dynamic

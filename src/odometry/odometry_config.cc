@@ -24,7 +24,6 @@ OdometryConfig::OdometryConfig() {
   features.refill_reuse_corners = true;
   tracking.new_point_confirmations = 2;
   tracking.coherent_motion.enabled = true;
-  tracking.static_belief.enabled = true;
   // People found by the detector join the mask when judged moving (tools/fetch_models.sh puts the
   // model here; without it the mask stays geometric, with a notice).
   detector.model = "data/models/yolo-fastest-1.1_body.weights";

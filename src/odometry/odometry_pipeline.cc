@@ -135,7 +135,6 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.features_readmitted = static_cast<int>(tracking.readmitted.size());
   record.new_points_rejected = tracking.new_points_rejected;
   record.coherent_motion_rejected = tracking.coherent_motion_rejected;
-  record.points_believed_dynamic = tracking.points_believed_dynamic;
   record.keyframe = tracking.keyframe_inserted;
   record.times.match_ms = tracking.match_ms;
   record.times.pose_ms = tracking.pose_ms;

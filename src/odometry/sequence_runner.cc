@@ -69,7 +69,6 @@ struct RunTally {
   int detector_frames = 0, detected_frames = 0, frames_with_people = 0, detector_failures = 0, detector_timeouts = 0;
   long long people = 0, people_moving = 0, people_still = 0;
   long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0, coherent_motion_rejected = 0;
-  long long points_believed_dynamic = 0;
   MaskCounts mask_total;
   std::vector<double> mask_iou;
 
@@ -93,7 +92,6 @@ struct RunTally {
     features_readmitted += r.features_readmitted;
     new_points_rejected += r.new_points_rejected;
     coherent_motion_rejected += r.coherent_motion_rejected;
-    points_believed_dynamic += r.points_believed_dynamic;
     if (r.mask_quality) {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
@@ -153,8 +151,7 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
                       {"features_removed", tally.features_removed},
                       {"features_readmitted", tally.features_readmitted},
                       {"new_points_rejected", tally.new_points_rejected},
-                      {"coherent_motion_rejected", tally.coherent_motion_rejected},
-                      {"points_believed_dynamic", tally.points_believed_dynamic}};
+                      {"coherent_motion_rejected", tally.coherent_motion_rejected}};
   if (tally.detector_frames > 0)
     report["counts"]["detector"] = {{"frames_detected", tally.detected_frames},
                                     {"frames_with_people", tally.frames_with_people},

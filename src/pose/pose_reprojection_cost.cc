@@ -10,12 +10,10 @@ namespace dynvo {
 
 PoseReprojectionCost::PoseReprojectionCost(const std::vector<Eigen::Vector2d>& observed,
                                            const std::vector<Eigen::Vector3d>& points_in_world, std::vector<int> use,
-                                           double fx, double fy, double cx, double cy, double huber_delta_px,
-                                           std::vector<double> weights)
+                                           double fx, double fy, double cx, double cy, double huber_delta_px)
     : observed_(observed),
       points_(points_in_world),
       use_(std::move(use)),
-      root_weights_(std::move(weights)),
       fx_(fx),
       fy_(fy),
       cx_(cx),
@@ -27,12 +25,6 @@ PoseReprojectionCost::PoseReprojectionCost(const std::vector<Eigen::Vector2d>& o
     if (i < 0 || static_cast<size_t>(i) >= observed.size())
       throw InputError("PoseReprojectionCost: correspondence index out of range");
   if (!(huber_delta_px > 0.0)) throw InputError("PoseReprojectionCost: the Huber scale must be positive");
-  if (!root_weights_.empty() && root_weights_.size() != observed.size())
-    throw InputError("PoseReprojectionCost: one weight per correspondence");
-  for (double& w : root_weights_) {
-    if (!(w > 0.0 && w <= 1.0)) throw InputError("PoseReprojectionCost: weights must be in (0, 1]");
-    w = std::sqrt(w);
-  }
   set_num_residuals(2 * static_cast<int>(use_.size()));
   mutable_parameter_block_sizes()->push_back(4);
   mutable_parameter_block_sizes()->push_back(3);
@@ -58,8 +50,7 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
     const bool outside = s > delta_squared;
     const double root_s = outside ? std::sqrt(s) : 0.0;
     const double w = outside ? std::sqrt(2.0 * delta_ / root_s - delta_squared / s) : 1.0;
-    const double scale = root_weights_.empty() ? 1.0 : root_weights_[static_cast<size_t>(i)];
-    Eigen::Map<Eigen::Vector2d>(residuals + 2 * k) = scale * w * e;
+    Eigen::Map<Eigen::Vector2d>(residuals + 2 * k) = w * e;
     if (!want_jacobians) continue;
 
     Eigen::Matrix<double, 2, 3> de_dp = Eigen::Matrix<double, 2, 3>::Zero();  // zero behind the camera
@@ -70,7 +61,7 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
       const double dw_ds = (-delta_ / (s * root_s) + delta_squared / (s * s)) / (2.0 * w);
       dr_de = w * Eigen::Matrix2d::Identity() + 2.0 * dw_ds * e * e.transpose();
     }
-    const Eigen::Matrix<double, 2, 3> dr_dp = scale * dr_de * de_dp;
+    const Eigen::Matrix<double, 2, 3> dr_dp = dr_de * de_dp;
     if (j_q != nullptr)
       Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>>(j_q + 8 * k) =
           dr_dp * RotatedPointJacobian(q, points_[i]);

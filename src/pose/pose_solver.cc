@@ -131,7 +131,7 @@ void PoseSolverOptions::Check() const {
 
 PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
                           const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
-                          const PoseSolverOptions& options, const std::vector<double>* weights) {
+                          const PoseSolverOptions& options) {
   options.Check();
   CheckSizes(points_in_world, pixels, "EstimatePose");
   PoseEstimate result;
@@ -158,12 +158,12 @@ PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
     result.num_inliers = found.num_inliers;
     return result;
   }
-  return RefinePose(points_in_world, pixels, camera, found.model, options, &found.inliers, weights);
+  return RefinePose(points_in_world, pixels, camera, found.model, options, &found.inliers);
 }
 
 PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
                         const Camera& camera, const Pose& initial_camera_from_world, const PoseSolverOptions& options,
-                        const std::vector<uint8_t>* use, const std::vector<double>* weights) {
+                        const std::vector<uint8_t>* use) {
   options.Check();
   CheckSizes(points_in_world, pixels, "RefinePose");
   const size_t n = points_in_world.size();
@@ -197,10 +197,9 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, con
     if (static_cast<int>(active_indices.size()) < options.min_inliers) break;
     // All active correspondences in one block, Huber inside (see PoseReprojectionCost).
     ceres::Problem problem;
-    problem.AddResidualBlock(
-        new PoseReprojectionCost(pixels, points_in_world, std::move(active_indices), camera.fx, camera.fy, camera.cx,
-                                 camera.cy, options.huber_delta_px, weights ? *weights : std::vector<double>()),
-        nullptr, q_xyzw, t);
+    problem.AddResidualBlock(new PoseReprojectionCost(pixels, points_in_world, std::move(active_indices), camera.fx,
+                                                      camera.fy, camera.cx, camera.cy, options.huber_delta_px),
+                             nullptr, q_xyzw, t);
     problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);

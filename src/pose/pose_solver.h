@@ -46,18 +46,17 @@ struct PoseEstimate {
 // RefinePose on the RANSAC inliers. Pixels are undistorted; `camera` distortion is ignored.
 // Deterministic for a given seed. Fails (ok = false, `failure` says why) when there are fewer
 // than `min_inliers` correspondences or inliers. Throws InputError when the vectors' sizes
-// differ or the options are invalid. `weights` as in RefinePose (RANSAC itself is unweighted).
+// differ or the options are invalid.
 PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
                           const std::vector<Eigen::Vector2d>& pixels, const Camera& camera,
-                          const PoseSolverOptions& options, const std::vector<double>* weights = nullptr);
+                          const PoseSolverOptions& options);
 
 // Ceres refinement (quaternion + translation, EigenQuaternionManifold, Huber) from an initial
 // pose, `refine_rounds` rounds with outliers dropped between rounds; `use` (optional, per
-// correspondence) restricts the start set; `weights` (optional, per correspondence, in (0, 1])
-// scale each one's robust cost (mapping/static_belief.h). Fails (ok = false) when fewer than
-// `min_inliers` inliers remain. Throws InputError when sizes differ or the options are invalid.
+// correspondence) restricts the start set. Fails (ok = false) when fewer than `min_inliers`
+// inliers remain. Throws InputError when sizes differ or the options are invalid.
 PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
                         const Camera& camera, const Pose& initial_camera_from_world, const PoseSolverOptions& options,
-                        const std::vector<uint8_t>* use = nullptr, const std::vector<double>* weights = nullptr);
+                        const std::vector<uint8_t>* use = nullptr);
 
 }  // namespace dynvo

@@ -20,11 +20,6 @@ namespace {
 
 bool HasDepth(double depth) { return depth > 0.0; }
 
-// `weights` for RefinePose: nullptr when empty (unweighted).
-const std::vector<double>* Weighted(const std::vector<double>& weights) {
-  return weights.empty() ? nullptr : &weights;
-}
-
 void CheckFeatures(const FrameFeatures& f) {
   const size_t n = f.size();
   if (f.pixels.size() != n || f.depths.size() != n || f.points_in_camera.size() != n)
@@ -47,7 +42,6 @@ void TrackerOptions::Check() const {
   map.Check();
   keyframes.Check();
   coherent_motion.Check();
-  static_belief.Check();
   RequireOption(min_matches >= 4, "tracking", "min_matches", ">= 4", min_matches);
   RequireOption(wide_search_factor >= 1.0, "tracking", "wide_search_factor", ">= 1", wide_search_factor);
   RequireOption(max_new_points >= 0, "tracking", "max_new_points", ">= 0", max_new_points);
@@ -100,7 +94,6 @@ void FrameTracker::AcceptPose(const FrameFeatures& used, double stamp, const std
     map_.MarkSeen(visible_ids_[static_cast<size_t>(matches[i].point_index)], frame_index_);
     result.feature_inliers[static_cast<size_t>(matches[i].feature_index)] = 1;
   }
-  if (options_.static_belief.enabled) UpdateStaticBelief(matches, estimate.inliers, result);
   const Pose keyframe_camera_from_world = map_.keyframes().back().camera_from_world;
   const KeyframeDecision decision =
       DecideKeyframe(options_.keyframes, frames_since_keyframe_, estimate.num_inliers, reference_tracked_,
@@ -178,9 +171,7 @@ PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features, cons
   failure.clear();
   if (static_cast<int>(matches.size()) >= options_.min_matches) {
     Correspondences(features, matches, points, pixels);
-    const std::vector<double> weights = MatchWeights(matches);
-    estimate = RefinePose(points, pixels, camera_, predicted_camera_from_world, options_.pose, nullptr,
-                          Weighted(weights));
+    estimate = RefinePose(points, pixels, camera_, predicted_camera_from_world, options_.pose);
     if (estimate.ok && estimate.num_inliers < options_.min_matches) {
       estimate.ok = false;
       estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
@@ -221,9 +212,7 @@ void FrameTracker::RematchAroundEstimate(const FrameFeatures& features, PoseEsti
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   if (EnoughCorrespondences(features, rematched, points, pixels)) {
-    const std::vector<double> weights = MatchWeights(rematched);
-    PoseEstimate second =
-        RefinePose(points, pixels, camera_, current.camera_from_world, options_.pose, nullptr, Weighted(weights));
+    PoseEstimate second = RefinePose(points, pixels, camera_, current.camera_from_world, options_.pose);
     if (second.ok && second.num_inliers >= current.num_inliers) {
       current = std::move(second);
       current_matches = std::move(rematched);
@@ -245,8 +234,7 @@ void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pos
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   if (EnoughCorrespondences(features, matches, points, pixels)) {
-    const std::vector<double> weights = MatchWeights(matches);
-    estimate = EstimatePose(points, pixels, camera_, options_.pose, Weighted(weights));
+    estimate = EstimatePose(points, pixels, camera_, options_.pose);
     if (estimate.ok && estimate.num_inliers < options_.min_matches) {
       estimate.ok = false;
       estimate.failure = "only " + std::to_string(estimate.num_inliers) + " inliers";
@@ -287,11 +275,7 @@ bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const Fr
   }
   std::vector<uint8_t> use = estimate.inliers;
   use.resize(n + verified.size(), 1);
-  std::vector<double> weights = MatchWeights(matches);
-  const std::vector<double> verified_weights = MatchWeights(verified);
-  weights.insert(weights.end(), verified_weights.begin(), verified_weights.end());
-  PoseEstimate joint =
-      RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use, Weighted(weights));
+  PoseEstimate joint = RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
   result.pose_ms += MillisecondsSince(refine_start);
   if (!joint.ok) return false;
 
@@ -340,9 +324,8 @@ void FrameTracker::ConfirmNewMapPoints(const FrameFeatures& features, const std:
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   Correspondences(features, matches, points, pixels);
-  const std::vector<double> weights = MatchWeights(matches);
-  NewPointConfirmation checked = ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_, options_.pose,
-                                                  options_.new_point_max_shift_m, Weighted(weights));
+  NewPointConfirmation checked =
+      ConfirmNewPoints(points, pixels, unconfirmed, estimate, camera_, options_.pose, options_.new_point_max_shift_m);
   for (size_t i = 0; i < n; ++i)
     if (checked.confirmed[i]) map_.Confirm(visible_ids_[static_cast<size_t>(matches[i].point_index)]);
   result.new_points_rejected = checked.rejected;
@@ -377,9 +360,7 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
     ++flagged;
   }
   if (flagged > 0) {
-    const std::vector<double> weights = MatchWeights(matches);
-    PoseEstimate refined =
-        RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use, Weighted(weights));
+    PoseEstimate refined = RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &use);
     if (refined.ok && refined.num_inliers >= options_.min_matches) {
       // RefinePose keeps the flagged ones out (`use` is its start set).
       std::set<int64_t> moving_points;
@@ -389,7 +370,11 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
         moving_features_[static_cast<size_t>(match.feature_index)] = 1;
         moving_points.insert(visible_ids_[static_cast<size_t>(match.point_index)]);
       }
-      RemovePoints(moving_points);
+      std::vector<std::pair<int64_t, int64_t>> doomed;
+      for (const Keyframe& keyframe : map_.keyframes())
+        for (const KeyframeObservation& o : keyframe.observations)
+          if (moving_points.count(o.point_id)) doomed.emplace_back(keyframe.id, o.point_id);
+      map_.RemoveObservations(doomed);
       estimate = std::move(refined);
       result.coherent_motion_rejected = flagged;
     }
@@ -397,43 +382,11 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
   result.pose_ms += MillisecondsSince(start);
 }
 
-std::vector<double> FrameTracker::MatchWeights(const std::vector<Match>& matches) const {
-  std::vector<double> weights;
-  if (visible_weights_.empty()) return weights;
-  weights.reserve(matches.size());
-  for (const Match& match : matches) weights.push_back(visible_weights_[static_cast<size_t>(match.point_index)]);
-  return weights;
-}
-
-void FrameTracker::UpdateStaticBelief(const std::vector<Match>& matches, const std::vector<uint8_t>& inliers,
-                                      TrackingResult& result) {
-  std::set<int64_t> dynamic_points;
-  for (size_t i = 0; i < matches.size(); ++i) {
-    const int64_t id = visible_ids_[static_cast<size_t>(matches[i].point_index)];
-    const MapPoint* point = map_.FindPoint(id);
-    if (point == nullptr) continue;  // left the map this frame
-    const double evidence = UpdatedEvidence(point->static_evidence, inliers[i] != 0, options_.static_belief);
-    map_.SetStaticBelief(id, evidence, StaticWeight(evidence, options_.static_belief));
-    if (BelievedDynamic(evidence, options_.static_belief)) dynamic_points.insert(id);
-  }
-  if (!dynamic_points.empty()) RemovePoints(dynamic_points);
-  result.points_believed_dynamic = static_cast<int>(dynamic_points.size());
-}
-
-void FrameTracker::RemovePoints(const std::set<int64_t>& point_ids) {
-  std::vector<std::pair<int64_t, int64_t>> doomed;
-  for (const Keyframe& keyframe : map_.keyframes())
-    for (const KeyframeObservation& o : keyframe.observations)
-      if (point_ids.count(o.point_id)) doomed.emplace_back(keyframe.id, o.point_id);
-  map_.RemoveObservations(doomed);
-}
-
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {
   visible_ids_.clear();
   visible_points_.clear();
   visible_angles_.clear();
   visible_unconfirmed_.clear();
-  visible_weights_.clear();
   std::vector<const MapPoint*> visible;
   visible.reserve(map_.num_points());
   for (const auto& [id, point] : map_.points()) {
@@ -443,7 +396,6 @@ void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double ma
     visible_points_.push_back(point.position_in_world);
     visible_angles_.push_back(point.angle_deg);
     visible_unconfirmed_.push_back(point.unconfirmed_frames > 0 ? 1 : 0);
-    if (options_.static_belief.enabled) visible_weights_.push_back(point.static_weight);
     visible.push_back(&point);
   }
   visible_descriptors_.create(static_cast<int>(visible.size()), 32, CV_8UC1);
@@ -532,7 +484,6 @@ void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry
   BindConfigKeys(prefix + ".map", &o->map, r);
   BindConfigKeys(prefix + ".keyframes", &o->keyframes, r);
   BindConfigKeys(prefix + ".coherent_motion", &o->coherent_motion, r);
-  BindConfigKeys(prefix + ".static_belief", &o->static_belief, r);
   r->Bind(prefix + ".min_matches", &o->min_matches, "fewer map matches: wider search, then lost");
   r->Bind(prefix + ".max_new_points", &o->max_new_points, "new map points per keyframe at most");
   r->Bind(prefix + ".max_ba_depth_rotation_deg_s", &o->max_ba_depth_rotation_deg_s,

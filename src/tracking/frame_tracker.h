@@ -7,7 +7,6 @@
 // mapper's (mapping/local_mapper.h), between frames. The world frame is the first frame's camera.
 
 #include <cstdint>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -15,7 +14,6 @@
 #include "features/frame_features.h"
 #include "mapping/keyframe_policy.h"
 #include "mapping/local_map.h"
-#include "mapping/static_belief.h"
 #include "pose/pose_solver.h"
 #include "pose/projection_matcher.h"
 #include "tracking/coherent_motion.h"
@@ -41,7 +39,6 @@ struct TrackerOptions {
                                               // keeps its depths out of local BA; its new points still
                                               // start from depth (deg/s; 0 = never; >= 0)
   CoherentMotionOptions coherent_motion;      // "tracking.coherent_motion.*"
-  StaticBeliefOptions static_belief;          // "tracking.static_belief.*"
   double rematch_radius_px = 5.0;             // after the first pose estimate, match again around it
                                               // within this radius and refine again (pixels; 0 = off,
                                               // >= 0)
@@ -65,7 +62,7 @@ struct TrackerOptions {
 };
 
 // The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes,
-// .coherent_motion, .static_belief).
+// .coherent_motion).
 void BindConfigKeys(const std::string& prefix, TrackerOptions* options, ConfigRegistry* registry);
 
 struct TrackingResult {
@@ -85,7 +82,6 @@ struct TrackingResult {
   int map_points = 0;
   int coherent_motion_rejected = 0;              // pose inliers that moved with their neighbours, left out
                                                  // of the pose and the map (coherent_motion)
-  int points_believed_dynamic = 0;               // map points that left the map believed dynamic (static_belief)
   int new_points_rejected = 0;                   // matches to unconfirmed map points left out of the pose
                                                  // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;              // false: the new keyframe's depths were left out of BA
@@ -164,14 +160,6 @@ class FrameTracker {
   // map, and their features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
-  // The static weight of each match's map point (mapping/static_belief.h); empty when the belief is off.
-  std::vector<double> MatchWeights(const std::vector<Match>& matches) const;
-  // The pose's inliers and outliers among `matches` update their points' belief; the points
-  // believed dynamic leave the map (counted in `result`).
-  void UpdateStaticBelief(const std::vector<Match>& matches, const std::vector<uint8_t>& inliers,
-                          TrackingResult& result);
-  // Removes every observation of `point_ids`, and so the points.
-  void RemovePoints(const std::set<int64_t>& point_ids);
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
@@ -197,7 +185,6 @@ class FrameTracker {
   std::vector<Eigen::Vector3d> visible_points_;
   std::vector<float> visible_angles_;         // ORB angle of each point's reference observation
   std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
-  std::vector<double> visible_weights_;       // static weight of each point (empty: belief off)
   std::vector<uint8_t> moving_features_;      // 1 per feature of the frame flagged by coherent_motion
   cv::Mat visible_descriptors_;
 };

@@ -17,8 +17,7 @@ constexpr double kConfirmRmsFactor = 2.0;
 NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points_in_world,
                                       const std::vector<Eigen::Vector2d>& pixels,
                                       const std::vector<uint8_t>& unconfirmed, const PoseEstimate& estimate,
-                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m,
-                                      const std::vector<double>* weights) {
+                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m) {
   const size_t n = points_in_world.size();
   if (pixels.size() != n || unconfirmed.size() != n || estimate.inliers.size() != n)
     throw InputError("ConfirmNewPoints: " + std::to_string(n) + " points, " + std::to_string(pixels.size()) +
@@ -39,7 +38,7 @@ NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points
   if (!estimate.ok || !any_unconfirmed) return out;
 
   const PoseEstimate from_trusted =
-      RefinePose(points_in_world, pixels, camera, estimate.camera_from_world, pose, &trusted, weights);
+      RefinePose(points_in_world, pixels, camera, estimate.camera_from_world, pose, &trusted);
   if (from_trusted.ok)
     out.shift_m =
         (estimate.camera_from_world.inverse().translation() - from_trusted.camera_from_world.inverse().translation())
@@ -59,8 +58,7 @@ NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points
       use[i] = 1;
     }
   }
-  PoseEstimate joint =
-      RefinePose(points_in_world, pixels, camera, from_trusted.camera_from_world, pose, &use, weights);
+  PoseEstimate joint = RefinePose(points_in_world, pixels, camera, from_trusted.camera_from_world, pose, &use);
   out.estimate = joint.ok ? std::move(joint) : from_trusted;
   for (size_t i = 0; i < n; ++i)
     if (unconfirmed[i] && estimate.inliers[i] && !out.estimate.inliers[i]) ++out.rejected;

@@ -32,12 +32,10 @@ struct NewPointConfirmation {
 // confirmed. Otherwise the unconfirmed points that the trusted pose projects within
 // min(pose.outlier_threshold_px, 2 x its RMS error) of their pixel are confirmed, and the pose is
 // refined from the trusted inliers plus them; the others are outliers of this frame. With no
-// unconfirmed inlier, returns `estimate` unchanged. `weights` as in RefinePose. Throws
-// InputError when the sizes differ.
+// unconfirmed inlier, returns `estimate` unchanged. Throws InputError when the sizes differ.
 NewPointConfirmation ConfirmNewPoints(const std::vector<Eigen::Vector3d>& points_in_world,
                                       const std::vector<Eigen::Vector2d>& pixels,
                                       const std::vector<uint8_t>& unconfirmed, const PoseEstimate& estimate,
-                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m,
-                                      const std::vector<double>* weights = nullptr);
+                                      const Camera& camera, const PoseSolverOptions& pose, double max_shift_m);
 
 }  // namespace dynvo

@@ -53,59 +53,46 @@ Scene MakeScene(unsigned seed, int n) {
   return s;
 }
 
-// Weights in (0, 1], a different one for each correspondence of a scene of `n`.
-std::vector<double> SomeWeights(size_t n) {
-  std::vector<double> weights(n);
-  for (size_t i = 0; i < n; ++i) weights[i] = 0.1 + 0.9 * static_cast<double>(i % 7) / 6.0;
-  return weights;
-}
-
 // |r_i|^2 is the Huber loss of the plain reprojection error of correspondence use[i] (checked
-// against the automatic-derivative residual and ceres::HuberLoss), times its weight when
-// weighted, so one block has the objective of one block per correspondence with a (scaled)
-// HuberLoss.
-TEST(PoseReprojectionCost, SquaredResidualsAreTheWeightedHuberLossOfTheReprojectionErrors) {
-  for (const bool weighted : {false, true}) {
-    const Scene s = MakeScene(11, 40);
-    const std::vector<int> use = {0, 3, 4, 7, 12, 20, 21, 39};
-    const double delta = 2.0;
-    const std::vector<double> weights = weighted ? SomeWeights(40) : std::vector<double>();
-    const PoseReprojectionCost cost(s.observed, s.points, use, kFx, kFy, kCx, kCy, delta, weights);
-    ASSERT_EQ(cost.num_residuals(), 2 * static_cast<int>(use.size()));
-    std::vector<double> r(static_cast<size_t>(cost.num_residuals()));
-    const double* parameters[2] = {s.q, s.t};
-    ASSERT_TRUE(cost.Evaluate(parameters, r.data(), nullptr));
-    const ceres::HuberLoss huber(delta);
-    int inside = 0, outside = 0;
-    for (size_t k = 0; k < use.size(); ++k) {
-      std::unique_ptr<ceres::CostFunction> plain(
-          PoseReprojectionError::Create(s.observed[use[k]], s.points[use[k]], kFx, kFy, kCx, kCy));
-      Eigen::Vector2d e;
-      ASSERT_TRUE(plain->Evaluate(parameters, e.data(), nullptr));
-      double rho[3];
-      huber.Evaluate(e.squaredNorm(), rho);
-      const Eigen::Vector2d rk(r[2 * k], r[2 * k + 1]);
-      const double w = weighted ? weights[static_cast<size_t>(use[k])] : 1.0;
-      EXPECT_NEAR(rk.squaredNorm(), w * rho[0], 1e-9 * (1.0 + rho[0])) << k;
-      EXPECT_NEAR(rk.normalized().dot(e.normalized()), 1.0, 1e-12) << k;  // same direction
-      (e.squaredNorm() <= delta * delta ? inside : outside) += 1;
-    }
-    EXPECT_GT(inside, 0);  // both branches of the loss are exercised
-    EXPECT_GT(outside, 0);
+// against the automatic-derivative residual and ceres::HuberLoss), so one block has the
+// objective of one block per correspondence with a HuberLoss.
+TEST(PoseReprojectionCost, SquaredResidualsAreTheHuberLossOfTheReprojectionErrors) {
+  const Scene s = MakeScene(11, 40);
+  const std::vector<int> use = {0, 3, 4, 7, 12, 20, 21, 39};
+  const double delta = 2.0;
+  const PoseReprojectionCost cost(s.observed, s.points, use, kFx, kFy, kCx, kCy, delta);
+  ASSERT_EQ(cost.num_residuals(), 2 * static_cast<int>(use.size()));
+  std::vector<double> r(static_cast<size_t>(cost.num_residuals()));
+  const double* parameters[2] = {s.q, s.t};
+  ASSERT_TRUE(cost.Evaluate(parameters, r.data(), nullptr));
+  const ceres::HuberLoss huber(delta);
+  int inside = 0, outside = 0;
+  for (size_t k = 0; k < use.size(); ++k) {
+    std::unique_ptr<ceres::CostFunction> plain(
+        PoseReprojectionError::Create(s.observed[use[k]], s.points[use[k]], kFx, kFy, kCx, kCy));
+    Eigen::Vector2d e;
+    ASSERT_TRUE(plain->Evaluate(parameters, e.data(), nullptr));
+    double rho[3];
+    huber.Evaluate(e.squaredNorm(), rho);
+    const Eigen::Vector2d rk(r[2 * k], r[2 * k + 1]);
+    EXPECT_NEAR(rk.squaredNorm(), rho[0], 1e-9 * (1.0 + rho[0])) << k;
+    EXPECT_NEAR(rk.normalized().dot(e.normalized()), 1.0, 1e-12) << k;  // same direction
+    (e.squaredNorm() <= delta * delta ? inside : outside) += 1;
   }
+  EXPECT_GT(inside, 0);  // both branches of the loss are exercised
+  EXPECT_GT(outside, 0);
 }
 
 // Analytic Jacobians of the robustified residuals equal central differences along the six
 // tangent directions of the pose (quaternion manifold, translation), on both sides of the
-// Huber scale, unweighted (seeds 3, 5) and weighted (8).
+// Huber scale.
 TEST(PoseReprojectionCost, JacobiansMatchCentralDifferences) {
   const ceres::EigenQuaternionManifold manifold;
   for (unsigned seed : {3u, 5u, 8u}) {
     const Scene s = MakeScene(seed, 30);
     std::vector<int> use(30);
     for (int i = 0; i < 30; ++i) use[i] = i;
-    const PoseReprojectionCost cost(s.observed, s.points, use, kFx, kFy, kCx, kCy, 4.0,
-                                    seed == 8u ? SomeWeights(30) : std::vector<double>());
+    const PoseReprojectionCost cost(s.observed, s.points, use, kFx, kFy, kCx, kCy, 4.0);
     const int m = cost.num_residuals();
     RowMajor jq(m, 4), jt(m, 3);
     Eigen::VectorXd r(m);
@@ -165,8 +152,6 @@ TEST(PoseReprojectionCost, RejectsBadIndicesAndScale) {
   const std::vector<Eigen::Vector2d> observed = {{320.0, 240.0}};
   EXPECT_THROW(PoseReprojectionCost(observed, points, {1}, 525, 525, 319.5, 239.5, 2.0), InputError);
   EXPECT_THROW(PoseReprojectionCost(observed, points, {0}, 525, 525, 319.5, 239.5, 0.0), InputError);
-  EXPECT_THROW(PoseReprojectionCost(observed, points, {0}, 525, 525, 319.5, 239.5, 2.0, {0.0}), InputError);
-  EXPECT_THROW(PoseReprojectionCost(observed, points, {0}, 525, 525, 319.5, 239.5, 2.0, {0.5, 0.5}), InputError);
 }
 
 }  // namespace

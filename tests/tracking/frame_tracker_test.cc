@@ -413,7 +413,6 @@ struct WallRun {
   std::vector<double> t_errors;
   int rejected = 0;           // new_points_rejected, summed
   int coherent_rejected = 0;  // coherent_motion_rejected, summed
-  int believed_dynamic = 0;   // points_believed_dynamic, summed
 };
 WallRun TrackWallWithBox(const test::SyntheticWorld& box, const std::function<double(int)>& box_shift_m, int box_from,
                          int frames, int max_features, unsigned rng_seed, const TrackerOptions& options) {
@@ -437,7 +436,6 @@ WallRun TrackWallWithBox(const test::SyntheticWorld& box, const std::function<do
     if (i > box_from) out.t_errors.push_back(t_error);
     out.rejected += r.new_points_rejected;
     out.coherent_rejected += r.coherent_motion_rejected;
-    out.believed_dynamic += r.points_believed_dynamic;
   }
   return out;
 }
@@ -510,31 +508,6 @@ TEST(FrameTracker, CoherentMotionKeepsASwayingBoxOutOfThePose) {
   // Where nothing moves, next to nothing is left out and the error stays.
   EXPECT_LT(still.coherent_rejected, 10);  // measured: 0
   EXPECT_LT(Rms(still.t_errors), 1.05 * Rms(still_off.t_errors));
-}
-
-TEST(FrameTracker, StaticBeliefWeighsDownAndDropsThePointsThatMove) {
-  TrackerOptions on;
-  on.static_belief.enabled = true;
-  const TrackerOptions off;
-  const WallRun moving = TrackWallWithUnmaskedBox(0.03, on), moving_off = TrackWallWithUnmaskedBox(0.03, off);
-  const WallRun sway = TrackWallWithSwayingBox(0.02, on), sway_off = TrackWallWithSwayingBox(0.02, off);
-  const WallRun still = TrackWallWithSwayingBox(0.0, on), still_off = TrackWallWithSwayingBox(0.0, off);
-  std::cout << "[ belief ] moving box: per-frame RMS " << Rms(moving.t_errors) * 1000 << " mm (off "
-            << Rms(moving_off.t_errors) * 1000 << "), dropped " << moving.believed_dynamic << "; swaying box "
-            << Rms(sway.t_errors) * 1000 << " (off " << Rms(sway_off.t_errors) * 1000 << "), dropped "
-            << sway.believed_dynamic << "; still box " << Rms(still.t_errors) * 1000 << " (off "
-            << Rms(still_off.t_errors) * 1000 << "), dropped " << still.believed_dynamic << "\n";
-  // Measured: the moving box's points leave the map (138 of them over 45 frames) and its pull
-  // drops a little (40.1 mm against 42.0: its fresh points still drag, until new points are on
-  // probation); the swaying box's points leave too, and come back at the next keyframe (3.79 mm
-  // against 3.58: coherent motion is what handles a sway); nothing leaves where nothing moves.
-  EXPECT_EQ(moving_off.believed_dynamic, 0);
-  EXPECT_GT(moving.believed_dynamic, 50);
-  EXPECT_LT(Rms(moving.t_errors), Rms(moving_off.t_errors));
-  EXPECT_GT(sway.believed_dynamic, 0);
-  EXPECT_LT(Rms(sway.t_errors), 1.1 * Rms(sway_off.t_errors));
-  EXPECT_EQ(still.believed_dynamic, 0);
-  EXPECT_EQ(Rms(still.t_errors), Rms(still_off.t_errors));
 }
 
 TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
