@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/executor.h"
+#include "detection/carried_detections.h"
 #include "detection/detection_runner.h"
 #include "detection/detector_options.h"
 #include "detection/person_detector.h"
@@ -37,18 +38,12 @@ class DetectorMaskSource : public MaskSource {
 
  private:
   bool DetectsOn(const RgbdFrame& frame) const;
-  // Frame t's boxes into `packet`: the detection of frame t, else (or when it fails) the last
-  // boxes moved by the packet's homography.
-  void TakeBoxes(const RgbdFrame& frame, MaskPacket* packet);
-  // The last boxes moved into `frame` by the packet's homography (dropped without one).
-  void CarryBoxes(const RgbdFrame& frame, const MaskPacket& packet);
 
   DetectorOptions options_;
   PersonMaskOptions person_mask_;
   FrameMotion motion_;
   DetectionRunner runner_;
-  std::vector<Detection> last_;  // the boxes of the last frame
-  int age_ = -1;                 // frames since last_ was detected (-1: never)
+  CarriedDetections people_;  // the last frame's boxes
 };
 
 }  // namespace dynvo

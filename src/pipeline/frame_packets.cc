@@ -1,5 +1,7 @@
 #include "pipeline/frame_packets.h"
 
+#include <utility>
+
 #include "dynamic_mask/mask_regions.h"
 
 namespace dynvo {
@@ -31,6 +33,19 @@ void MaskPacket::Join(const cv::Mat& region) {
   if (region.empty()) return;
   refined = true;
   mask = MaskUnion(mask, region);
+}
+
+void MaskPacket::TakePeople(DetectionOutcome outcome, const cv::Size& image, CarriedDetections* carried) {
+  detection = outcome.status;
+  detector_ms = outcome.detector_ms;
+  if (outcome.status == DetectionStatus::kDetected) {
+    carried->Detected(std::move(outcome.people));
+  } else {
+    if (failure.empty()) failure = outcome.failure;
+    carried->Carry(has_motion ? &current_from_previous : nullptr, image);
+  }
+  people = carried->people();
+  detection_age = carried->age();
 }
 
 }  // namespace dynvo

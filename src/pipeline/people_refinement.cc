@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "core/stopwatch.h"
-#include "detection/box_motion.h"
 
 namespace dynvo {
 namespace {
@@ -35,26 +34,9 @@ void PeopleRefinement::Begin(const RgbdFrame& frame) { runner_.Start(frame.bgr);
 
 void PeopleRefinement::LookAhead(const RgbdFrame& next) { runner_.Start(next.bgr); }
 
-void PeopleRefinement::TakePeople(const RgbdFrame& frame, MaskPacket* mask) {
-  DetectionOutcome outcome = runner_.Take(frame.bgr);
-  mask->detection = outcome.status;
-  mask->detector_ms = outcome.detector_ms;
-  if (outcome.status == DetectionStatus::kDetected) {
-    last_people_ = std::move(outcome.people);
-    age_ = 0;
-  } else {
-    if (mask->failure.empty()) mask->failure = outcome.failure;
-    last_people_ = mask->has_motion && age_ >= 0
-                       ? CarryDetections(last_people_, mask->current_from_previous, frame.gray.size())
-                       : std::vector<Detection>();
-    if (age_ >= 0) ++age_;
-  }
-  mask->detection_age = age_;
-}
-
 void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
-  TakePeople(frame, mask);
-  const std::vector<Detection>& people = last_people_;
+  mask->TakePeople(runner_.Take(frame.bgr), frame.gray.size(), &people_);
+  const std::vector<Detection>& people = mask->people;
   const auto start = SteadyClock::now();
   std::vector<cv::Mat> silhouettes;
   std::vector<PersonEvidence> evidence;
@@ -72,7 +54,6 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
     if (!moving[i]) continue;
     mask->Join(silhouettes[i]);
   }
-  mask->people = people;
   mask->people_moving = moving;
   mask->ms += MillisecondsSince(start);
 }

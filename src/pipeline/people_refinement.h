@@ -10,6 +10,7 @@
 
 #include "core/camera.h"
 #include "core/executor.h"
+#include "detection/carried_detections.h"
 #include "detection/detection_runner.h"
 #include "detection/detector_options.h"
 #include "detection/moving_people.h"
@@ -35,15 +36,11 @@ class PeopleRefinement : public MaskRefinement {
   void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) override;
 
  private:
-  // Frame t's people into `mask` (detection status, age, failure) and last_people_.
-  void TakePeople(const RgbdFrame& frame, MaskPacket* mask);
-
   Camera camera_;
   DetectionRunner runner_;
   PersonMaskOptions person_mask_;
   MovingPeople moving_;
-  std::vector<Detection> last_people_;  // the last frame's people
-  int age_ = -1;                        // frames since last_people_ were detected (-1: never)
+  CarriedDetections people_;  // the last frame's people
 };
 
 }  // namespace dynvo
