@@ -74,6 +74,32 @@ Pose GroundtruthAt(const std::vector<Stamped>& gt, double stamp) {
 
 using test::ProcessCpuMs;
 
+// Frame `i` of the sequence in `dir`: its grey image and the nearest depth image, in metres.
+void LoadFrame(const std::string& dir, const std::vector<Stamped>& rgb, const std::vector<Stamped>& depth, int i,
+               cv::Mat* gray, cv::Mat* metres) {
+  *gray = cv::imread(dir + rgb[i].fields[0], cv::IMREAD_GRAYSCALE);
+  const cv::Mat raw = cv::imread(dir + Nearest(depth, rgb[i].stamp).fields[0], cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(raw.type(), CV_16UC1);
+  raw.convertTo(*metres, CV_32F, 1.0 / 5000.0);  // TUM depth scale
+}
+
+// A map of a frame's features with depth, in that frame's camera coordinates ("world").
+struct FrameMap {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<float> angles;
+  cv::Mat descriptors;
+};
+FrameMap MapOf(const FrameFeatures& a) {
+  FrameMap map;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a.depths[i] <= 0) continue;
+    map.points.push_back(a.points_in_camera[i]);
+    map.angles.push_back(a.keypoints[i].angle);
+    map.descriptors.push_back(a.descriptors.row(static_cast<int>(i)));
+  }
+  return map;
+}
+
 TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
   DYNVO_REQUIRE_SHARED(shared);
   const std::string dir = shared + "/data/tum/rgbd_dataset_freiburg1_rpy_head150/";
@@ -95,33 +121,17 @@ TEST(RealFrames, MatchedPoseAgreesWithGroundtruth) {
   std::vector<double> match_ms, pose_ms, rot_err, trans_err;
   for (int first : {5, 25, 45, 65, 85, 105, 125}) {
     const int second = first + 1;  // 1/30 s apart
-    auto load = [&](int i, cv::Mat* gray, cv::Mat* metres) {
-      *gray = cv::imread(dir + rgb[i].fields[0], cv::IMREAD_GRAYSCALE);
-      const cv::Mat raw = cv::imread(dir + Nearest(depth, rgb[i].stamp).fields[0], cv::IMREAD_UNCHANGED);
-      ASSERT_EQ(raw.type(), CV_16UC1);
-      raw.convertTo(*metres, CV_32F, 1.0 / 5000.0);  // TUM depth scale
-    };
     cv::Mat gray_a, depth_a, gray_b, depth_b;
-    load(first, &gray_a, &depth_a);
-    load(second, &gray_b, &depth_b);
-    const FrameFeatures a = extractor.Extract(gray_a, depth_a, camera);
+    LoadFrame(dir, rgb, depth, first, &gray_a, &depth_a);
+    LoadFrame(dir, rgb, depth, second, &gray_b, &depth_b);
+    const FrameMap map = MapOf(extractor.Extract(gray_a, depth_a, camera));
     const FrameFeatures b = extractor.Extract(gray_b, cv::Mat(), camera);
-
-    // The map: frame a's features with depth, in frame a's camera coordinates ("world").
-    std::vector<Eigen::Vector3d> points;
-    std::vector<float> angles;
-    cv::Mat descriptors;
-    for (size_t i = 0; i < a.size(); ++i) {
-      if (a.depths[i] <= 0) continue;
-      points.push_back(a.points_in_camera[i]);
-      angles.push_back(a.keypoints[i].angle);
-      descriptors.push_back(a.descriptors.row(static_cast<int>(i)));
-    }
+    const std::vector<Eigen::Vector3d>& points = map.points;
     ASSERT_GT(points.size(), 300u);
 
     const double c0 = ProcessCpuMs();
     const std::vector<Match> matches =
-        MatchByProjection(points, descriptors, b, camera, Pose::Identity(), match_options, &angles);
+        MatchByProjection(points, map.descriptors, b, camera, Pose::Identity(), match_options, &map.angles);
     const double c1 = ProcessCpuMs();
     std::vector<Eigen::Vector3d> matched_points;
     std::vector<Eigen::Vector2d> matched_pixels;

@@ -56,6 +56,57 @@ int CountDifferent(const cv::Mat& a, const cv::Mat& b, const cv::Mat& where) {
   return cv::countNonZero(any & where);
 }
 
+// Samples of the cut-outs' interiors (body-part pixels whose 5x5 neighbourhood is all person:
+// away from the outline) at `stamp`, in the camera's frame, within its view cone.
+std::vector<cv::Point3d> PersonSamplesInCamera(const InsertionPlan& plan, double stamp, const Pose& camera_from_world) {
+  std::vector<cv::Point3d> points;
+  for (const TexturedQuad& q : InsertionQuadsAt(plan, stamp)) {
+    cv::Mat solid;
+    cv::extractChannel(q.texture->levels[0], solid, 3);
+    cv::erode(solid, solid, cv::Mat::ones(5, 5, CV_8U));
+    for (int r = 2; r < solid.rows; r += 6)
+      for (int c = 2; c < solid.cols; c += 6) {
+        if (solid.at<uchar>(r, c) == 0) continue;
+        const Eigen::Vector3d p =
+            camera_from_world * (q.origin + q.edge_u * ((c + 0.5) / solid.cols) + q.edge_v * ((r + 0.5) / solid.rows));
+        if (p.z() > 0.1 && std::abs(p.x() / p.z()) < 0.9 && std::abs(p.y() / p.z()) < 0.8)
+          points.emplace_back(p.x(), p.y(), p.z());
+      }
+  }
+  return points;
+}
+
+// What became of a frame's person samples, projected with cv::projectPoints (independent of
+// the insertion's own projection) against the real depth and the written mask.
+struct SampleTally {
+  int in_view = 0;
+  int visible = 0, visible_masked = 0;    // nearer than the real surface by more than 2 cm
+  int occluded = 0, occluded_masked = 0;  // farther by more than 2 cm
+};
+SampleTally TallySamples(const std::vector<cv::Point3d>& points, const Camera& camera, const cv::Mat& real_depth,
+                         const cv::Mat& mask) {
+  SampleTally t;
+  if (points.empty()) return t;
+  std::vector<cv::Point2d> pixels;
+  cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(), pixels);
+  for (size_t k = 0; k < points.size(); ++k) {
+    const int u = cvRound(pixels[k].x), v = cvRound(pixels[k].y);
+    if (u < 2 || v < 2 || u >= camera.width - 2 || v >= camera.height - 2) continue;
+    ++t.in_view;
+    const double person = points[k].z * 5000.0;
+    const int real = real_depth.at<std::uint16_t>(v, u);
+    const bool masked = mask.at<uchar>(v, u) != 0;
+    if (real == 0 || person < real - 100) {
+      ++t.visible;
+      t.visible_masked += masked;
+    } else if (person > real + 100) {
+      ++t.occluded;
+      t.occluded_masked += masked;
+    }
+  }
+  return t;
+}
+
 TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   DYNVO_REQUIRE_SHARED(shared);
   const fs::path source = fs::path(shared) / "data/tum/rgbd_dataset_freiburg1_rpy_head150";
@@ -88,16 +139,9 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   InsertionOptions used = options;
   used.distance_m = summary.distance_m;
   const InsertionPlan plan = PlanInsertion(used, {cutout}, gt, rgb.front().stamp, rgb.back().stamp, camera);
-  // Body-part pixels whose 5x5 neighbourhood is all person: away from the outline.
-  auto solid_of = [](const TexturedQuad& q) {
-    cv::Mat solid;
-    cv::extractChannel(q.texture->levels[0], solid, 3);
-    cv::erode(solid, solid, cv::Mat::ones(5, 5, CV_8U));
-    return solid;
-  };
 
-  int frames_with_mask = 0, frames_without = 0, visible_samples = 0, visible_masked = 0;
-  int occluded_samples = 0, occluded_masked = 0;
+  int frames_with_mask = 0, frames_without = 0;
+  SampleTally all;
   for (size_t i = 0; i < rgb.size(); ++i) {
     const cv::Mat in_rgb = cv::imread((in / rgb[i].path).string(), cv::IMREAD_UNCHANGED);
     const cv::Mat out_rgb = cv::imread((out / rgb[i].path).string(), cv::IMREAD_UNCHANGED);
@@ -113,45 +157,17 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
 
     Pose world_from_camera;
     ASSERT_TRUE(InterpolatePose(gt, rgb[i].stamp, 0.1, &world_from_camera));
-    const Pose camera_from_world = world_from_camera.inverse();
-    std::vector<cv::Point3d> points;
-    for (const TexturedQuad& q : InsertionQuadsAt(plan, rgb[i].stamp)) {
-      const cv::Mat solid = solid_of(q);
-      for (int r = 2; r < solid.rows; r += 6)
-        for (int c = 2; c < solid.cols; c += 6) {
-          if (solid.at<uchar>(r, c) == 0) continue;
-          const Eigen::Vector3d p = camera_from_world * (q.origin + q.edge_u * ((c + 0.5) / solid.cols) +
-                                                         q.edge_v * ((r + 0.5) / solid.rows));
-          if (p.z() > 0.1 && std::abs(p.x() / p.z()) < 0.9 && std::abs(p.y() / p.z()) < 0.8)
-            points.emplace_back(p.x(), p.y(), p.z());
-        }
-    }
-    int in_view = 0, visible = 0;
-    if (!points.empty()) {
-      std::vector<cv::Point2d> pixels;
-      cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.DistCoeffs(), pixels);
-      for (size_t k = 0; k < points.size(); ++k) {
-        const int u = cvRound(pixels[k].x), v = cvRound(pixels[k].y);
-        if (u < 2 || v < 2 || u >= camera.width - 2 || v >= camera.height - 2) continue;
-        ++in_view;
-        const double person = points[k].z * 5000.0;
-        const int real = in_depth.at<std::uint16_t>(v, u);
-        const bool masked = mask.at<uchar>(v, u) != 0;
-        if (real == 0 || person < real - 100) {  // nearer by more than 2 cm
-          ++visible;
-          ++visible_samples;
-          visible_masked += masked;
-        } else if (person > real + 100) {  // farther by more than 2 cm
-          ++occluded_samples;
-          occluded_masked += masked;
-        }
-      }
-    }
+    const SampleTally t =
+        TallySamples(PersonSamplesInCamera(plan, rgb[i].stamp, world_from_camera.inverse()), camera, in_depth, mask);
+    all.visible += t.visible;
+    all.visible_masked += t.visible_masked;
+    all.occluded += t.occluded;
+    all.occluded_masked += t.occluded_masked;
     const bool has_mask = cv::countNonZero(mask) > 0;
-    if (visible >= 3) {
+    if (t.visible >= 3) {
       EXPECT_TRUE(has_mask) << "frame " << i << ": person in view but mask empty";
     }
-    if (in_view == 0) {  // no sample of a part's interior in view: at most a sliver at the border
+    if (t.in_view == 0) {  // no sample of a part's interior in view: at most a sliver at the border
       EXPECT_LT(cv::countNonZero(mask), 300) << "frame " << i << ": person out of view but mask set";
     }
     frames_with_mask += has_mask;
@@ -160,10 +176,10 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   // The walk enters and leaves the view; the desk hides part of the person.
   EXPECT_GE(frames_with_mask, 10);
   EXPECT_GE(frames_without, 5);
-  ASSERT_GT(visible_samples, 200);
-  EXPECT_GT(visible_masked, 0.97 * visible_samples);
-  ASSERT_GT(occluded_samples, 50);
-  EXPECT_LT(occluded_masked, 0.03 * occluded_samples);
+  ASSERT_GT(all.visible, 200);
+  EXPECT_GT(all.visible_masked, 0.97 * all.visible);
+  ASSERT_GT(all.occluded, 50);
+  EXPECT_LT(all.occluded_masked, 0.03 * all.occluded);
 }
 
 TEST(PeopleInsertion, CompositeWritesOnlyNearerPixels) {
