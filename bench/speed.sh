@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Per-frame processing cost of dynvo (paper, baseline and dynvo configs, paper and dynvo
-# also on one thread, without the look-ahead) against OpenCV's
+# Per-frame processing cost of dynvo (paper, baseline, dynvo and ipl configs, with the person
+# detector when its model is found; paper and dynvo also on one thread, without the
+# look-ahead) against OpenCV's
 # RgbdOdometry and ICPOdometry on the same in-memory frames, in the same process
 # (bench/odometry_speed.cc): median over frames, median of RUNS runs, ratio to RgbdOdometry (per run, interleaved),
 # and the per-stage split. Sequences: fr1_rpy_head150 from ../shared when present, and a
@@ -27,18 +28,34 @@ synth="$work/synth_two_crossing_xyz"
   --seed 1 --out "$synth" --force >&2
 sequences+=("$synth")
 
+# The person detector of configs/dynvo.json and ipl.json: data/models/ (tools/fetch_models.sh)
+# when fetched, else ../shared/models; without either dynvo runs geometric only (its run.json
+# says so) and ipl is left out. The table names the model a row ran with.
+models="$root/data/models"
+[ -f "$models/yolo-fastest-1.1_body.weights" ] || models="$shared/models"
+detector=()
+if [ -f "$models/yolo-fastest-1.1_body.weights" ]; then
+  detector=(--set "detector.model=$models/yolo-fastest-1.1_body.weights"
+            --set "detector.config=$models/yolo-fastest-1.1_body.cfg")
+fi
+
 rm -f "$work"/*.json  # the table is this run's alone
 for seq in "${sequences[@]}"; do
-  for mode in paper baseline dynvo; do
+  for mode in paper baseline; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
       --json "$work/$(basename "$seq")_$mode.json" >&2
   done
+  for mode in dynvo ipl; do
+    [ "$mode" = ipl ] && [ ${#detector[@]} -eq 0 ] && continue
+    "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
+      ${detector[@]+"${detector[@]}"} --json "$work/$(basename "$seq")_$mode.json" >&2
+  done
   # Paper mode and configs/dynvo.json on one thread: each frame's stages in turn, in its own
   # call (the same results).
-  for mode in paper dynvo; do
-    "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
-      --threads 1 --json "$work/$(basename "$seq")_${mode}_in_turn.json" >&2
-  done
+  "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/paper.json" --runs "$runs" \
+    --threads 1 --json "$work/$(basename "$seq")_paper_in_turn.json" >&2
+  "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/dynvo.json" --runs "$runs" \
+    ${detector[@]+"${detector[@]}"} --threads 1 --json "$work/$(basename "$seq")_dynvo_in_turn.json" >&2
 done
 
 PYTHONPATH="$root/tools${PYTHONPATH:+:$PYTHONPATH}" "${PYTHON:-/usr/bin/python3}" -m dynvo_tools speed-table "$work" \

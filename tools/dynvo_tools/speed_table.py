@@ -24,11 +24,19 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
     parser.set_defaults(run=run)
 
 
+def short_override(override: str) -> str:
+    """`key=value` with a path value cut to its file name (a model's folder says nothing here)."""
+    key, _, value = override.partition("=")
+    return key + "=" + os.path.basename(value.strip('"')) if "/" in value else override
+
+
 def config_label(run: dict) -> str:
     """The config's name, with its overrides and "(1 thread)" when they apply."""
     label = os.path.basename(run["config"]).replace(".json", "")
     if run.get("overrides"):
-        label += " (" + ", ".join(run["overrides"]) + ")"
+        # The .cfg goes with the model: the model's name is enough.
+        shown = [short_override(o) for o in run["overrides"] if not o.startswith("detector.config=")]
+        label += " (" + ", ".join(shown) + ")"
     if run.get("threads") == 1:
         label += " (1 thread)"
     return label
