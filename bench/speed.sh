@@ -28,16 +28,9 @@ synth="$work/synth_two_crossing_xyz"
   --seed 1 --out "$synth" --force >&2
 sequences+=("$synth")
 
-# The person detector of configs/dynvo.json and ipl.json: data/models/ (tools/fetch_models.sh)
-# when fetched, else ../shared/models; without either dynvo runs geometric only (its run.json
-# says so) and ipl is left out. The table names the model a row ran with.
-models="$root/data/models"
-[ -f "$models/yolo-fastest-1.1_body.weights" ] || models="$shared/models"
-detector=()
-if [ -f "$models/yolo-fastest-1.1_body.weights" ]; then
-  detector=(--set "detector.model=$models/yolo-fastest-1.1_body.weights"
-            --set "detector.config=$models/yolo-fastest-1.1_body.cfg")
-fi
+# The person detector of configs/dynvo.json and ipl.json (without its model ipl is left out);
+# the table names the model a row ran with.
+source "$root/bench/detector_model.sh"
 
 rm -f "$work"/*.json  # the table is this run's alone
 for seq in "${sequences[@]}"; do

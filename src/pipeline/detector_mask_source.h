@@ -4,8 +4,9 @@
 // (detection/person_mask.h); every person found leaves the features. The detection of frame
 // t+1 runs on the executor while frame t is tracked (detection/detection_runner.h). With
 // detector.every_frames = k the detector runs on every k-th frame; the frames between, and a
-// frame whose detection failed or timed out, carry the last boxes by the camera's motion (KLT homography) and cut them again by their own
-// depth, with the detection's age in frames.
+// frame whose detection failed or timed out, carry the last boxes by the camera's motion (KLT
+// homography, detection/carried_detections.h) and cut them again by their own depth, with the
+// detection's age in frames.
 
 #include <memory>
 #include <vector>

@@ -64,10 +64,10 @@ struct MaskPacket {
   void SetMotion(const std::optional<Eigen::Matrix3d>& motion);
   // Adds `region` (same size, CV_8UC1) to the mask; marks the mask refined unless it is empty.
   void Join(const cv::Mat& region);
-  // The frame's people from a detection `outcome` (its status, time and failure recorded):
-  // detected, else `people`' last ones carried by this packet's motion into an `image`-sized
-  // frame; `people`, detection_age and `people` of the packet follow.
-  void TakePeople(DetectionOutcome outcome, const cv::Size& image, CarriedDetections* people);
+  // The frame's people from a detection `outcome` (its status, time and failure recorded): the
+  // detected ones, else the last ones of `carried` moved by this packet's motion into an
+  // `image`-sized frame. Sets `people` and `detection_age`.
+  void TakePeople(DetectionOutcome outcome, const cv::Size& image, CarriedDetections* carried);
 };
 
 // Frame t's features, split by its mask.

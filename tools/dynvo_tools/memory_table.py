@@ -17,13 +17,21 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
     parser.set_defaults(run=run)
 
 
+def config_label(info: dict) -> str:
+    """The config file's name, with the person detector's model when one ran."""
+    label = os.path.basename(str(info.get("config_file", "defaults"))).replace(".json", "")
+    if "detector" in info.get("counts", {}):
+        label += " (%s)" % os.path.basename(str(info.get("config", {}).get("detector", {}).get("model", "")))
+    return label
+
+
 def run(args: argparse.Namespace) -> int:
     """Writes the CSV and prints the Markdown table, one row per run folder."""
     rows = []
     for run_dir in args.runs:
         path = os.path.join(run_dir, "run.json")
         info = read_json("memory table", path)
-        rows.append((os.path.basename(str(info.get("config_file", "defaults"))).replace(".json", ""),
+        rows.append((config_label(info),
                      int(json_number("memory table", path, info, "counts.frames")),
                      json_number("memory table", path, info, "memory.peak_rss_mb"),
                      int(json_number("memory table", path, info, "counts.keyframes"))))
