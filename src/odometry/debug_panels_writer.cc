@@ -78,13 +78,13 @@ cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
   cv::Mat canvas = bgr.clone();
   if (!mask.mask.empty()) canvas.setTo(cv::Scalar(0, 0, 255), mask.mask);
   cv::addWeighted(bgr, 0.6, canvas, 0.4, 0.0, canvas);
-  const bool judged = mask.people_moving.size() == mask.people.size();
+  const bool judged = mask.people_moving.has_value();
   char label[48];
   for (size_t i = 0; i < mask.people.size(); ++i) {
     const Detection& person = mask.people[i];
-    const char* state = !judged ? "" : mask.people_moving[i] ? " moving" : " still";
+    const char* state = !judged ? "" : (*mask.people_moving)[i] ? " moving" : " still";
     const cv::Scalar color = !judged                 ? cv::Scalar(0, 255, 255)
-                             : mask.people_moving[i] ? cv::Scalar(0, 0, 255)
+                             : (*mask.people_moving)[i] ? cv::Scalar(0, 0, 255)
                                                      : cv::Scalar(0, 200, 0);
     cv::rectangle(canvas, person.box, color, 2);
     std::snprintf(label, sizeof(label), "%.2f%s", person.score, state);

@@ -115,8 +115,8 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
     record.detection_age = mask.detection_age;
     record.detection = ToString(mask.detection);
     record.times.detector_ms = mask.detector_ms;
-    if (mask.people_moving.size() == mask.people.size())  // judged (people refinement)
-      record.people_moving = static_cast<int>(std::count(mask.people_moving.begin(), mask.people_moving.end(), true));
+    if (mask.people_moving)  // judged (people refinement)
+      record.people_moving = static_cast<int>(std::count(mask.people_moving->begin(), mask.people_moving->end(), true));
   }
   record.mask_threshold = mask.threshold;
   record.times.dynamic_mask_ms = mask.ms + stages.refinement_upkeep_ms;

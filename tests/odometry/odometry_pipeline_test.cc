@@ -271,5 +271,29 @@ TEST(OdometryPipeline, ALookAheadForAnotherFrameIsDropped) {
   EXPECT_EQ(taken.stages.mask.status, MaskStatus::kComputed);
 }
 
+// A frame with a detector records its people; the moving/still split only where someone judged
+// them, also when nobody was found (0 moving of 0), never from the sizes of empty lists.
+TEST(OdometryPipeline, FrameRecordSplitsPeopleOnlyWhenJudged) {
+  RgbdFrame frame;
+  FrameOutput detected;  // mask source detector: nobody judges, here nobody found
+  detected.mask.status = MaskStatus::kDetected;
+  detected.mask.detection = DetectionStatus::kDetected;
+  detected.mask.detection_age = 0;
+  FrameRecord record = MakeFrameRecord(frame, detected);
+  EXPECT_EQ(record.people, 0);
+  EXPECT_EQ(record.people_moving, -1);
+  EXPECT_EQ(record.detection, "detected");
+  FrameOutput judged = detected;  // the people refinement: two found, one moving
+  judged.mask.people = {{cv::Rect2d(0, 0, 10, 20), 0.9, 0}, {cv::Rect2d(30, 0, 10, 20), 0.8, 0}};
+  judged.mask.people_moving = std::vector<bool>{true, false};
+  record = MakeFrameRecord(frame, judged);
+  EXPECT_EQ(record.people, 2);
+  EXPECT_EQ(record.people_moving, 1);
+  judged.mask.people.clear();
+  judged.mask.people_moving = std::vector<bool>{};
+  EXPECT_EQ(MakeFrameRecord(frame, judged).people_moving, 0);
+  EXPECT_EQ(MakeFrameRecord(frame, FrameOutput{}).people, -1);  // no detector
+}
+
 }  // namespace
 }  // namespace dynvo
