@@ -31,13 +31,33 @@ cv::Rect ParseBox(const std::string& text) {
   return {v[0], v[1], v[2], v[3]};
 }
 
+// The people's sources: each --person with its --person-mask, or its --person-box (and
+// --person-depth, when given), in order.
+struct PersonSources {
+  std::vector<std::string> images, masks, boxes, depths;
+};
+
+// The cut-out of person `i` of `sources` from its box: by its depth image, else by GrabCut.
+dynvo::PersonCutout CutoutInBox(const PersonSources& sources, size_t i, unsigned seed) {
+  const std::string& path = sources.images[i];
+  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty()) throw dynvo::InputError(path + ": cannot read the person image");
+  const cv::Rect box = ParseBox(sources.boxes[i]);
+  if (sources.depths.empty()) return dynvo::CutoutWithGrabCut(image, box, 5, seed, path);
+  const cv::Mat depth = cv::imread(sources.depths[i], cv::IMREAD_ANYDEPTH);
+  if (depth.empty()) throw dynvo::InputError(sources.depths[i] + ": cannot read the person's depth image");
+  return dynvo::CutoutWithDepth(image, depth, box, sources.depths[i]);
+}
+
 // The cut-outs of --person (each with its --person-mask or --person-box, in order), the
 // drawn person for "--person drawn", or the default photos.
-std::vector<dynvo::PersonCutout> LoadCutouts(const std::vector<std::string>& persons,
-                                             const std::vector<std::string>& masks,
-                                             const std::vector<std::string>& boxes, unsigned seed) {
+std::vector<dynvo::PersonCutout> LoadCutouts(const PersonSources& sources, unsigned seed) {
+  const std::vector<std::string>& persons = sources.images;
+  const std::vector<std::string>& masks = sources.masks;
+  const std::vector<std::string>& boxes = sources.boxes;
   if (persons.empty()) {
-    if (!masks.empty() || !boxes.empty()) throw dynvo::InputError("--person-mask and --person-box need --person");
+    if (!masks.empty() || !boxes.empty() || !sources.depths.empty())
+      throw dynvo::InputError("--person-mask, --person-box and --person-depth need --person");
     return dynvo::DefaultPersonCutouts();
   }
   if (persons.size() == 1 && persons[0] == "drawn") return {dynvo::MakeSyntheticPersonCutout(seed)};
@@ -45,16 +65,12 @@ std::vector<dynvo::PersonCutout> LoadCutouts(const std::vector<std::string>& per
     throw dynvo::InputError("give each --person one --person-mask, or each one --person-box (" +
                             std::to_string(persons.size()) + " --person, " + std::to_string(masks.size()) +
                             " --person-mask, " + std::to_string(boxes.size()) + " --person-box)");
+  if (!sources.depths.empty() && sources.depths.size() != boxes.size())
+    throw dynvo::InputError("give each --person-box one --person-depth, or none (" + std::to_string(boxes.size()) +
+                            " --person-box, " + std::to_string(sources.depths.size()) + " --person-depth)");
   std::vector<dynvo::PersonCutout> cutouts;
-  for (size_t i = 0; i < persons.size(); ++i) {
-    if (!masks.empty()) {
-      cutouts.push_back(dynvo::LoadPersonCutout(persons[i], masks[i]));
-      continue;
-    }
-    const cv::Mat image = cv::imread(persons[i], cv::IMREAD_COLOR);
-    if (image.empty()) throw dynvo::InputError(persons[i] + ": cannot read the person image");
-    cutouts.push_back(dynvo::CutoutWithGrabCut(image, ParseBox(boxes[i]), 5, seed, persons[i]));
-  }
+  for (size_t i = 0; i < persons.size(); ++i)
+    cutouts.push_back(masks.empty() ? CutoutInBox(sources, i, seed) : dynvo::LoadPersonCutout(persons[i], masks[i]));
   return cutouts;
 }
 
@@ -66,19 +82,24 @@ int main(int argc, char** argv) {
       "Insert people (articulated photo cut-outs) into a real TUM RGB-D sequence: occlusion against "
       "the real depth, ground-truth dynamic masks, per-person labels and coverage"};
   std::string dataset, preset = "tum_walking", out;
-  std::vector<std::string> persons, person_masks, person_boxes;
+  PersonSources people;
   dynvo::InsertionOptions options;
   unsigned seed = 1;
   bool force = false;
   app.add_option("--dataset", dataset, "real TUM sequence folder with groundtruth.txt")->required();
-  app.add_option("--person", persons,
+  app.add_option("--person", people.images,
                  "photo of a person (repeat for more people; 'drawn': a drawn person; "
                  "default: two people of opencv-doc's person_multi_det.jpg)");
   auto* mask_opt =
-      app.add_option("--person-mask", person_masks, "mask of the person in each --person (non-zero = person)");
+      app.add_option("--person-mask", people.masks, "mask of the person in each --person (non-zero = person)");
   auto* box_opt =
-      app.add_option("--person-box", person_boxes, "x,y,w,h box around the person in each --person (GrabCut)");
+      app.add_option("--person-box", people.boxes,
+                     "x,y,w,h box around the person in each --person (cut by GrabCut, or by --person-depth)");
+  auto* depth_opt = app.add_option("--person-depth", people.depths,
+                                   "TUM depth PNG registered to each --person: the box is cut to its nearest "
+                                   "depth layer (a person in a real RGB-D frame) instead of by GrabCut");
   mask_opt->excludes(box_opt);
+  depth_opt->needs(box_opt);
   app.add_option("--preset", preset,
                  "tum_walking|tum_toward|tum_away|tum_sitting|walking_across|walking_toward|"
                  "two_crossing|sitting_sway")
@@ -100,7 +121,7 @@ int main(int argc, char** argv) {
     options.preset = dynvo::ParseScenario(preset, "--preset");
     options.seed = seed;
     options.Check();
-    const std::vector<dynvo::PersonCutout> cutouts = LoadCutouts(persons, person_masks, person_boxes, seed);
+    const std::vector<dynvo::PersonCutout> cutouts = LoadCutouts(people, seed);
     if (std::filesystem::exists(out) && std::filesystem::exists(dataset) && std::filesystem::equivalent(out, dataset))
       throw dynvo::InputError(out + ": --out must differ from --dataset");
     dynvo::PrepareOutputFolder(out, force);

@@ -7,12 +7,15 @@
 #include <iostream>
 
 #include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 namespace dynvo {
 
 // Parses `app` and runs `job`. --help prints the usage (exit 0); a usage error or an
 // exception from the job prints one line "<prog>: error: <message>" on stderr (exit 1).
+// OpenCV's own warnings (e.g. imread's on a missing file) are silenced: the error line says it.
 inline int RunToolMain(const char* prog, CLI::App& app, int argc, char** argv, const std::function<void()>& job) {
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

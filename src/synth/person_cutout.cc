@@ -1,5 +1,8 @@
 #include "synth/person_cutout.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -35,11 +38,37 @@ PersonCutout LoadPersonCutout(const std::string& image_path, const std::string& 
   return CutoutFromMask(bgr, mask, mask_path);
 }
 
-PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
-                               const std::string& source) {
+namespace {
+
+// TUM's depth PNGs: 5000 units per metre.
+constexpr double kTumDepthFactor = 5000;
+
+void CheckPersonBox(const cv::Mat& bgr, const cv::Rect& box, const std::string& source) {
   if (bgr.empty() || bgr.type() != CV_8UC3) throw InputError(source + ": person image must be 8-bit BGR");
   if (box.width < 8 || box.height < 8 || (box & cv::Rect(0, 0, bgr.cols, bgr.rows)) != box)
     throw InputError(source + ": person box must lie inside the image and be at least 8x8 pixels");
+}
+
+// The largest 8-connected part of `mask`: the person, not stray background specks. Throws
+// InputError(`error`) when the mask is empty.
+cv::Mat LargestPart(const cv::Mat& mask, const std::string& error) {
+  cv::Mat components, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(mask, components, stats, centroids, 8);
+  int best = 0, best_area = 0;
+  for (int i = 1; i < count; ++i)
+    if (stats.at<int>(i, cv::CC_STAT_AREA) > best_area) {
+      best_area = stats.at<int>(i, cv::CC_STAT_AREA);
+      best = i;
+    }
+  if (best == 0) throw InputError(error);
+  return components == best;
+}
+
+}  // namespace
+
+PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
+                               const std::string& source) {
+  CheckPersonBox(bgr, box, source);
   if (iterations < 1) throw InputError(source + ": GrabCut iterations must be >= 1");
   // Outside the box: background; inside: probably the person, and surely so along a stroke
   // down the box's middle (head, torso and the legs' gap of an upright person), which keeps
@@ -52,19 +81,30 @@ PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iter
   // GrabCut initialises its colour models with k-means on OpenCV's thread RNG.
   cv::theRNG().state = 0x5DEECE66DULL ^ seed;
   cv::grabCut(bgr, labels, box, bgd, fgd, iterations, cv::GC_INIT_WITH_MASK);
-  cv::Mat mask = (labels == cv::GC_FGD) | (labels == cv::GC_PR_FGD);
-  // Keep the largest connected part: the person, not stray background specks.
-  cv::Mat components, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(mask, components, stats, centroids, 8);
-  int best = 0, best_area = 0;
-  for (int i = 1; i < count; ++i)
-    if (stats.at<int>(i, cv::CC_STAT_AREA) > best_area) {
-      best_area = stats.at<int>(i, cv::CC_STAT_AREA);
-      best = i;
-    }
-  if (best == 0) throw InputError(source + ": GrabCut found no person inside the box");
-  mask = components == best;
-  return CutoutFromMask(bgr, mask, source);
+  const cv::Mat mask = (labels == cv::GC_FGD) | (labels == cv::GC_PR_FGD);
+  return CutoutFromMask(bgr, LargestPart(mask, source + ": GrabCut found no person inside the box"), source);
+}
+
+PersonCutout CutoutWithDepth(const cv::Mat& bgr, const cv::Mat& depth, const cv::Rect& box,
+                             const std::string& source) {
+  CheckPersonBox(bgr, box, source);
+  if (depth.size() != bgr.size() || depth.type() != CV_16U)
+    throw InputError(source + ": person depth must be 16-bit 1-channel and the size of the image (" +
+                     std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) + ")");
+  const cv::Mat inside = depth(box);
+  std::vector<std::uint16_t> valid;
+  for (int r = 0; r < inside.rows; ++r)
+    for (int c = 0; c < inside.cols; ++c)
+      if (const std::uint16_t d = inside.at<std::uint16_t>(r, c); d > 0) valid.push_back(d);
+  if (valid.empty()) throw InputError(source + ": person depth has no valid reading inside the box");
+  const auto fifth = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 5);
+  std::nth_element(valid.begin(), fifth, valid.end());
+  const double far = *fifth + kPersonDepthLayerM * kTumDepthFactor;
+  cv::Mat layer = (inside > 0) & (inside <= far);
+  cv::morphologyEx(layer, layer, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+  cv::Mat mask(bgr.size(), CV_8U, cv::Scalar(0));
+  layer.copyTo(mask(box));
+  return CutoutFromMask(bgr, LargestPart(mask, source + ": no person found in the depth inside the box"), source);
 }
 
 std::vector<PersonCutout> DefaultPersonCutouts() {

@@ -1,6 +1,7 @@
 #pragma once
 // Person cut-outs for insertion into real sequences: a BGRA image (alpha = person) from a
-// photo and its mask, from a photo and a box (GrabCut), or drawn procedurally.
+// photo and its mask, from a photo and a box (GrabCut, or the nearest depth layer of a registered
+// depth image), or drawn procedurally.
 
 #include <cstdint>
 #include <string>
@@ -27,6 +28,18 @@ PersonCutout LoadPersonCutout(const std::string& image_path, const std::string& 
 // inside the image or nothing is segmented.
 PersonCutout CutoutWithGrabCut(const cv::Mat& bgr, const cv::Rect& box, int iterations, std::uint32_t seed,
                                const std::string& source);
+
+// Cuts the person inside `box` by depth: the valid pixels of `depth` (CV_16U, TUM's 1/5000 m,
+// registered to `bgr`) at most kPersonDepthLayerM behind the box's 20th percentile of depth,
+// small holes closed, the largest connected part. For a person standing in front of a farther
+// background, as in a frame of a real RGB-D sequence. Throws InputError naming `source` when the
+// box is not inside the image, the sizes or types differ, or the box has no valid depth.
+PersonCutout CutoutWithDepth(const cv::Mat& bgr, const cv::Mat& depth, const cv::Rect& box,
+                             const std::string& source);
+
+// Metres behind the nearest fifth of a box's depths that still count as the person (a body's
+// depth plus Kinect noise at 1-3 m).
+constexpr double kPersonDepthLayerM = 0.5;
 
 // The photo the default people are cut from: a Debian package's file (opencv-doc).
 constexpr const char* kDefaultPeoplePhoto = "/usr/share/doc/opencv-doc/opencv4/html/person_multi_det.jpg";

@@ -230,6 +230,29 @@ TEST(PersonCutout, GrabCutSegmentsAPersonShapeInsideTheBox) {
   EXPECT_THROW(CutoutWithGrabCut(image, cv::Rect(250, 350, 100, 100), 5, 1, "test image"), InputError);
 }
 
+TEST(PersonCutout, DepthCutsTheBoxToItsNearestLayer) {
+  // A figure 1.5 m away in front of a wall 3 m away, with a hole (no reading) in its chest and
+  // a small object at 1.6 m outside it: the cut-out is the figure with its hole, not the object.
+  cv::Mat image(200, 160, CV_8UC3, cv::Scalar(90, 100, 110)), depth(200, 160, CV_16U, cv::Scalar(15000));
+  const cv::Rect figure(50, 20, 40, 150);
+  depth(figure).setTo(7500);
+  depth(cv::Rect(65, 60, 3, 3)).setTo(0);
+  depth(cv::Rect(110, 150, 10, 10)).setTo(8000);
+  const PersonCutout cut = CutoutWithDepth(image, depth, cv::Rect(40, 10, 60, 170), "d.png");
+  EXPECT_EQ(cut.bgra.size(), figure.size());
+  cv::Mat alpha;
+  cv::extractChannel(cut.bgra, alpha, 3);
+  EXPECT_EQ(cv::countNonZero(alpha), figure.area());
+  // The same box widened over the object: the object is a separate, smaller part.
+  EXPECT_EQ(CutoutWithDepth(image, depth, cv::Rect(40, 10, 90, 170), "d.png").bgra.size(), figure.size());
+  // A person 0.6 m in front of the one behind: only the nearer one.
+  depth(cv::Rect(50, 20, 20, 150)).setTo(4500);
+  EXPECT_EQ(CutoutWithDepth(image, depth, cv::Rect(40, 10, 60, 170), "d.png").bgra.size(), cv::Size(20, 150));
+  EXPECT_THROW(CutoutWithDepth(image, cv::Mat(200, 160, CV_16U, cv::Scalar(0)), figure, "d.png"), InputError);
+  EXPECT_THROW(CutoutWithDepth(image, cv::Mat(100, 160, CV_16U, cv::Scalar(1)), figure, "d.png"), InputError);
+  EXPECT_THROW(CutoutWithDepth(image, depth, cv::Rect(150, 20, 40, 40), "d.png"), InputError);
+}
+
 TEST(PersonCutout, FromMaskCropsAndRejectsBadInput) {
   cv::Mat image(50, 40, CV_8UC3, cv::Scalar(1, 2, 3)), mask(50, 40, CV_8U, cv::Scalar(0));
   mask(cv::Rect(10, 5, 8, 30)).setTo(255);

@@ -97,6 +97,14 @@ TEST(Tools, BadArgumentsGiveOneLineErrors) {
   ExpectOneLineError(RunTool(dir, "dynvo-insert-people",
                              "--dataset d --person a.png --person b.png --person-box 1,2,30,40 --out " + out),
                      "dynvo-insert-people", "2 --person, 0 --person-mask, 1 --person-box");
+  ExpectOneLineError(RunTool(dir, "dynvo-insert-people",
+                             "--dataset d --person a.png --person b.png --person-box 1,2,30,40 --person-box "
+                             "1,2,30,40 --person-depth a_depth.png --out " + out),
+                     "dynvo-insert-people", "2 --person-box, 1 --person-depth");
+  ExpectOneLineError(RunTool(dir, "dynvo-insert-people",
+                             "--dataset d --person a.png --person-box 1,2,30,40 --person-depth a_depth.png --out " +
+                                 out),
+                     "dynvo-insert-people", "a.png");
   ExpectOneLineError(RunTool(dir, "dynvo-insert-people", "--dataset d --preset tum_running --out " + out),
                      "dynvo-insert-people", "--preset");
 }

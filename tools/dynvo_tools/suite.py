@@ -38,10 +38,14 @@ from .evaluation import ATE, RPE_PER_SECOND, EvaluatedRun, RunRequest, run_and_e
 # The people of each source: the TUM presets of dynvo-insert-people (articulated photo people in
 # real frames) and the same scenarios of dynvo-synth (the same people in a synthetic room).
 PRESETS = ("tum_walking", "tum_toward", "tum_away", "tum_sitting")
-# The people of each split's real frames: photos of Debian's opencv-doc and the boxes around them.
-PHOTO = "/usr/share/doc/opencv-doc/opencv4/html/person_multi_det.jpg"
-DEV_PERSON = ("--person", PHOTO, "--person-box", "343,170,40,178")
-VALIDATION_PERSON = ("--person", PHOTO, "--person-box", "18,186,24,118")
+# The people of each split's real frames, from photos of a person 380-475 px tall: dev, the
+# man on the left of opencv-doc's basketball1.png (cut by GrabCut); validation, the man
+# standing on the right of the real TUM frame in SHARED/data/samples (cut by its depth;
+# the frame ends at his shins). "{shared}" stands for the shared data folder.
+DEV_PERSON = ("--person", "/usr/share/doc/opencv-doc/examples/data/basketball1.png", "--person-box", "31,86,135,380")
+SAMPLE = "{shared}/data/samples/fr3_walking_xyz_%s_13418463%s.png"
+VALIDATION_PERSON = ("--person", SAMPLE % ("rgb", "13.553992"), "--person-box", "470,5,170,475",
+                     "--person-depth", SAMPLE % ("depth", "13.592088"))
 CONFIGS = ("baseline", "paper", "dynvo")
 SPLITS = ("dev", "validation")
 INSERT, SYNTH = "inserted", "synthetic"
@@ -57,7 +61,7 @@ class Source:
     kind: str                      # INSERT: dynvo-insert-people; SYNTH: dynvo-synth
     where: str                     # INSERT: real folder in SHARED/data/tum; SYNTH: camera path
     seed: int                      # --seed of the generator
-    person: tuple[str, ...] = ()   # INSERT only: --person/--person-box arguments (none: drawn)
+    person: tuple[str, ...] = ()   # INSERT only: --person, --person-box, --person-depth arguments
 
 
 # The two splits, every sequence of each.
@@ -127,7 +131,7 @@ def source_rows(source: Source, frames: int, seq_dir: str, shared: str) -> list[
         available = os.path.isdir(real)
         made = [(f"{twin.name}_{p}_s{seed}",
                  ("dynvo-insert-people", "--dataset", real, "--preset", p, "--seed", seed)
-                 + source.person) for p in PRESETS]
+                 + tuple(arg.format(shared=shared) for arg in source.person)) for p in PRESETS]
     else:
         def synth(scenario: str) -> tuple[str, ...]:
             return ("dynvo-synth", "--scenario", scenario, "--camera-path", source.where,
