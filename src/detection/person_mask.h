@@ -1,8 +1,9 @@
 #pragma once
-// A detection box to a person's mask by depth: inside the box the person is the dominant near
-// depth mode, grown to its silhouette by depth continuity (a little beyond the box, where an arm
-// or a foot sticks out); what the box shows behind the person (background between the legs,
-// beside the shoulders) stays out of the mask and usable.
+// A detection box to a person's mask by depth: the person is the dominant near depth mode where
+// its head and torso are in the box (not a desk in front of its legs), grown to its silhouette
+// by depth continuity (a little beyond the box, where an arm or a foot sticks out); what the box
+// shows behind the person (background between the legs, beside the shoulders) stays out of the
+// mask and usable.
 
 #include <opencv2/core.hpp>
 
@@ -16,15 +17,17 @@ struct PersonMaskOptions {
   double band_m = 0.3;      // the person's depths: its mode +- max(band_m, band_ratio x depth)
   double band_ratio = 0.12;
   int grow_px = 6;               // the silhouette grown by this much (depth/colour misalignment, hair)
-  double min_depth_share = 0.1;  // with fewer depths in the box than this share, the whole box is the mask
+  double min_depth_share = 0.1;  // with fewer depths in the torso strip than this share, the whole box is the mask
 };
 
 // The mask (CV_8UC1 of depth's size, 255 = the person) of the person detected in `box` (image
 // pixels), from depth (CV_32FC1 metres, 0 = no measurement). Empty box: an empty mask.
 cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const PersonMaskOptions& options = {});
 
-// The depth of the person in `box`: the nearest depth mode holding at least `dominance` of the
-// largest mode's depths; 0 when the box has too few depths (min_depth_share).
+// The depth of the person in `box`: in the box's head and torso strip (its middle half of the
+// columns, from a tenth to six tenths of its height), the nearest depth mode holding at least
+// `dominance` of the largest mode's depths; 0 when the strip has too few depths
+// (min_depth_share).
 double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOptions& options = {});
 
 }  // namespace dynvo

@@ -54,6 +54,16 @@ TEST(PersonMask, CoversThePersonAndLeavesTheBackgroundInTheBox) {
   EXPECT_EQ(cv::countNonZero(mask(cv::Rect(362, 405, 20, 20))), 0);      // the nearer small box is not the person
 }
 
+TEST(PersonMask, ADeskInFrontOfTheLegsIsNotThePerson) {
+  // A desk at 1.2 m covers the box below the person's waist, more of the box than the person.
+  Scene s = MakeScene();
+  s.depth(cv::Rect(200, 260, 240, 220)).setTo(1.2f);
+  EXPECT_NEAR(PersonDepth(s.depth, cv::Rect(s.box)), 2.0, 2.0 * 0.04);
+  const cv::Mat mask = PersonMaskFromBox(s.depth, s.box);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(200, 300, 240, 180))), 0);  // the desk below the waist
+  EXPECT_GT(cv::countNonZero(mask & s.person), 0.99 * cv::countNonZero(s.person(cv::Rect(0, 0, 640, 260))));
+}
+
 TEST(PersonMask, WithoutDepthTheBoxIsTheMask) {
   const cv::Mat depth = cv::Mat::zeros(480, 640, CV_32FC1);
   const cv::Mat mask = PersonMaskFromBox(depth, cv::Rect2d(100.4, 50.2, 80, 200));
