@@ -27,4 +27,8 @@ Camera TumCameraForSequence(const std::string& folder_name, bool* recognised) {
   return MakeCamera(525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0});
 }
 
+double TumDepthFactorForSequence(const std::string& folder_name) {
+  return folder_name.find("freiburg2") != std::string::npos ? 5208.0 : 5000.0;
+}
+
 }  // namespace dynvo

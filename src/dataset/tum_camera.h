@@ -16,4 +16,9 @@ namespace dynvo {
 // one of the three names matched.
 Camera TumCameraForSequence(const std::string& folder_name, bool* recognised = nullptr);
 
+// The depth PNG value per metre of a TUM sequence by folder name: 5208 for "freiburg2" (that
+// Kinect reads depth about 4% too far; ORB-SLAM2's TUM2.yaml uses the same factor), else the
+// published 5000.
+double TumDepthFactorForSequence(const std::string& folder_name);
+
 }  // namespace dynvo

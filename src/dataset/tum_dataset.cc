@@ -57,8 +57,9 @@ std::string TypeName(const cv::Mat& image) {
 void TumDatasetOptions::Check() const {
   if (!std::isfinite(max_time_difference) || !(max_time_difference > 0))
     throw InputError("dataset.max_time_difference must be > 0 (seconds), got " + Number(max_time_difference));
-  if (!std::isfinite(depth_factor) || !(depth_factor > 0))
-    throw InputError("dataset.depth_factor must be > 0 (PNG value per metre), got " + Number(depth_factor));
+  if (!std::isfinite(depth_factor) || !(depth_factor >= 0))
+    throw InputError("dataset.depth_factor must be >= 0 (PNG value per metre; 0: by folder name), got " +
+                     Number(depth_factor));
   if (camera) camera->Check("dataset.camera");
 }
 
@@ -76,8 +77,9 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
   rgb_ = ReadImageList(rgb_list_);
   depth_ = ReadImageList(depth_list_);
 
-  // Intrinsics: options.camera > camera.json > folder name > ROS default.
-  depth_factor_ = options_.depth_factor;
+  // Intrinsics: options.camera > camera.json > folder name > ROS default. Depth factor:
+  // camera.json (how its folder's PNGs were written) > the option > folder name.
+  depth_factor_ = options_.depth_factor > 0 ? options_.depth_factor : TumDepthFactorForSequence(name_);
   const std::string camera_json = (fs::path(folder_) / "camera.json").string();
   if (fs::exists(camera_json)) {
     const CameraFile file = ReadCameraFile(camera_json);
@@ -231,7 +233,9 @@ cv::Mat TumDataset::LoadMask(size_t i) const {
 void BindConfigKeys(const std::string& prefix, TumDatasetOptions* o, ConfigRegistry* r) {
   r->Bind(prefix + ".max_time_difference", &o->max_time_difference,
           "seconds; RGB and depth stamps further apart are not associated");
-  r->Bind(prefix + ".depth_factor", &o->depth_factor, "depth PNG value per metre (TUM: 5000)");
+  r->Bind(prefix + ".depth_factor", &o->depth_factor,
+          "depth PNG value per metre; 0 = by the folder: camera.json's depth_factor, else 5208 for a TUM "
+          "freiburg2 folder (its Kinect reads depth about 4% too far, as ORB-SLAM2 corrects), else 5000");
   r->Bind(prefix + ".undistort", &o->undistort,
           "remap images to an undistorted pinhole camera when the camera has distortion");
 }

@@ -20,7 +20,8 @@ class ConfigRegistry;
 
 struct TumDatasetOptions {
   double max_time_difference = 0.02;  // s, RGB-depth association (strictly below)
-  double depth_factor = 5000.0;       // PNG value per metre; camera.json "depth_factor" wins
+  double depth_factor = 0.0;          // PNG value per metre; camera.json "depth_factor" wins;
+                                      // 0: by folder name (TumDepthFactorForSequence)
   bool undistort = true;              // remap images when the camera has distortion
   std::optional<Camera> camera;       // overrides every other source of intrinsics
 
@@ -61,7 +62,8 @@ class TumDataset {
   // The convex part of every image Load() returns that holds image data: without the black
   // border undistortion leaves (empty = the whole image, when there is no undistortion).
   const ImageArea& image_area() const;
-  // PNG value per metre used for depth (camera.json "depth_factor" or the option).
+  // PNG value per metre used for depth (camera.json "depth_factor", else the option, else by
+  // folder name).
   double depth_factor() const;
 
   // Frame i, undistorted when the option asks and the camera has distortion (RGB bilinear,

@@ -125,7 +125,8 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
                        {"unmatched_rgb", dataset.unmatched_rgb()},
                        {"has_groundtruth", dataset.has_groundtruth()},
                        {"has_masks", dataset.has_masks()},
-                       {"camera", CameraJson(dataset.camera())}};
+                       {"camera", CameraJson(dataset.camera())},
+                       {"depth_factor", dataset.depth_factor()}};
   report["config_file"] = request.config_path;
   report["overrides"] = request.overrides;
   report["config"] = OdometryConfigToJson(config);

@@ -37,6 +37,13 @@ TEST(TumCamera, Freiburg2And3) {
   EXPECT_FALSE(fr3.HasDistortion());
 }
 
+TEST(TumCamera, DepthFactorIsFreiburg2sCorrectionElseTheStandard) {
+  EXPECT_EQ(TumDepthFactorForSequence("rgbd_dataset_freiburg2_desk_head50"), 5208.0);
+  EXPECT_EQ(TumDepthFactorForSequence("rgbd_dataset_freiburg1_rpy"), 5000.0);
+  EXPECT_EQ(TumDepthFactorForSequence("rgbd_dataset_freiburg3_walking_xyz"), 5000.0);
+  EXPECT_EQ(TumDepthFactorForSequence("my_office_walk"), 5000.0);
+}
+
 TEST(TumCamera, UnknownNameGivesRosDefault) {
   bool recognised = true;
   const Camera c = TumCameraForSequence("my_office_walk", &recognised);

@@ -48,7 +48,7 @@ TEST(TumDatasetOptions, CheckNamesTheKey) {
   options = {};
   options.depth_factor = -5000;
   EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }),
-                       "dataset.depth_factor must be > 0 (PNG value per metre), got -5000"));
+                       "dataset.depth_factor must be >= 0 (PNG value per metre; 0: by folder name), got -5000"));
   options = {};
   options.camera = Camera();
   options.camera->fx = 0;
@@ -102,6 +102,21 @@ TEST(TumDataset, DepthFactorFromOptionsOrCameraFile) {
   const TumDataset dataset(seq.folder, options);
   EXPECT_EQ(dataset.depth_factor(), 10000.0);
   EXPECT_FLOAT_EQ(dataset.Load(0).depth.at<float>(5, 5), 0.5f);
+}
+
+TEST(TumDataset, DepthFactorByFolderNameWhenNotGiven) {
+  TempDir dir;
+  TumTestFolderSpec spec;
+  spec.name = "rgbd_dataset_freiburg2_desk";
+  const TumTestFolder fr2 = WriteTumTestFolder(dir, spec);
+  spec.name = "rgbd_dataset_freiburg1_desk";
+  const TumTestFolder fr1 = WriteTumTestFolder(dir, spec);
+  EXPECT_EQ(TumDataset(fr2.folder, {}).depth_factor(), 5208.0);  // the fr2 Kinect's correction
+  EXPECT_FLOAT_EQ(TumDataset(fr2.folder, {}).Load(0).depth.at<float>(240, 320), static_cast<float>(5000.0 / 5208.0));
+  EXPECT_EQ(TumDataset(fr1.folder, {}).depth_factor(), 5000.0);
+  TumDatasetOptions options;
+  options.depth_factor = 5000;  // given: wins over the name
+  EXPECT_EQ(TumDataset(fr2.folder, options).depth_factor(), 5000.0);
 }
 
 TEST(TumDataset, AssociationHonoursMaxTimeDifference) {
