@@ -43,9 +43,9 @@ PRESETS = ("tum_walking", "tum_toward", "tum_away", "tum_sitting")
 # standing on the right of the real TUM frame in SHARED/data/samples (cut by its depth;
 # the frame ends at his shins). "{shared}" stands for the shared data folder.
 DEV_PERSON = ("--person", "/usr/share/doc/opencv-doc/examples/data/basketball1.png", "--person-box", "31,86,135,380")
-SAMPLE = "{shared}/data/samples/fr3_walking_xyz_%s_13418463%s.png"
-VALIDATION_PERSON = ("--person", SAMPLE % ("rgb", "13.553992"), "--person-box", "470,5,170,475",
-                     "--person-depth", SAMPLE % ("depth", "13.592088"))
+VALIDATION_PERSON = ("--person", "{shared}/data/samples/fr3_walking_xyz_rgb_1341846313.553992.png",
+                     "--person-box", "470,5,170,475",
+                     "--person-depth", "{shared}/data/samples/fr3_walking_xyz_depth_1341846313.592088.png")
 CONFIGS = ("baseline", "paper", "dynvo")
 SPLITS = ("dev", "validation")
 INSERT, SYNTH = "inserted", "synthetic"
