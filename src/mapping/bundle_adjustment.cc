@@ -24,6 +24,7 @@ void BundleAdjustmentOptions::Check() const {
   RequireOption(rounds >= 1, "local_ba", "rounds", ">= 1", rounds);
   RequireOption(huber_delta_px > 0.0, "local_ba", "huber_delta_px", "> 0", huber_delta_px);
   RequireOption(outlier_threshold_px > 0.0, "local_ba", "outlier_threshold_px", "> 0", outlier_threshold_px);
+  RequireOption(merge_delay_frames >= 0, "local_ba", "merge_delay_frames", ">= 0", merge_delay_frames);
   RequireOption(virtual_baseline_m >= 0.0, "local_ba", "virtual_baseline_m", ">= 0", virtual_baseline_m);
 }
 
@@ -122,64 +123,65 @@ BaWindow SelectWindow(const std::deque<Keyframe>& keyframes, int window_keyframe
   return w;
 }
 
-// The observations of points seen at least twice, in a deterministic order (keyframe,
-// observation); `point_ids` receives the points in the order of Residual::point.
-std::vector<Residual> CollectResiduals(const std::deque<Keyframe>& keyframes, const BaWindow& w,
-                                       std::vector<int64_t>* point_ids) {
+// The problem's observations of points seen at least twice, in a deterministic order
+// (keyframe, observation), with their keyframes and points.
+void CollectObservations(const LocalMap& map, const BaWindow& w, LocalBaProblem* problem) {
+  const auto& keyframes = map.keyframes();
   std::unordered_map<int64_t, size_t> point_index;
-  std::vector<Residual> residuals;
   for (size_t k = 0; k < keyframes.size(); ++k) {
     if (!w.used[k]) continue;
-    const auto& observations = keyframes[k].observations;
-    for (size_t o = 0; o < observations.size(); ++o) {
-      auto it = w.points.find(observations[o].point_id);
+    const size_t keyframe = problem->keyframes.size();
+    problem->keyframes.push_back({keyframes[k].id, keyframes[k].camera_from_world, w.fixed[k] != 0});
+    for (const KeyframeObservation& obs : keyframes[k].observations) {
+      auto it = w.points.find(obs.point_id);
       if (it == w.points.end() || it->second < 2) continue;
-      auto [slot, inserted] = point_index.emplace(observations[o].point_id, point_ids->size());
-      if (inserted) point_ids->push_back(observations[o].point_id);
-      residuals.push_back({k, o, slot->second});
+      auto [slot, inserted] = point_index.emplace(obs.point_id, problem->point_ids.size());
+      if (inserted) {
+        problem->point_ids.push_back(obs.point_id);
+        problem->points.push_back(map.FindPoint(obs.point_id)->position_in_world);
+      }
+      problem->observations.push_back({keyframe, slot->second, obs});
     }
   }
-  return residuals;
 }
 
-// The variables of the problem: the used keyframes' poses and the points.
+// The variables of the problem: the keyframes' poses and the points.
 struct BaState {
   std::vector<PoseBlock> poses;
   std::vector<Eigen::Vector3d> points;
 };
 
-// One Ceres solve over the active residuals (Huber loss, fixed keyframes constant). Returns
+// One Ceres solve over the active observations (Huber loss, fixed keyframes constant). Returns
 // false with report->failure set when Ceres gives no usable solution; `*solved` is false when
-// no residual was active (nothing to solve).
-bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, double bf, const BaWindow& w,
-                const std::vector<Residual>& residuals, const std::vector<uint8_t>& active,
+// no observation was active (nothing to solve).
+bool SolveRound(const LocalBaProblem& problem, const Camera& camera, double bf, const std::vector<uint8_t>& active,
                 const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report, bool* solved) {
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
+  ceres::Problem ceres_problem(problem_options);
   // One loss object shared by all residuals; the problem deletes it once.
   ceres::LossFunction* loss = new ceres::HuberLoss(options.huber_delta_px);
-  for (size_t i = 0; i < residuals.size(); ++i) {
+  for (size_t i = 0; i < problem.observations.size(); ++i) {
     if (!active[i]) continue;
-    const Residual& r = residuals[i];
-    const KeyframeObservation& obs = keyframes[r.keyframe].observations[r.observation];
+    const LocalBaProblem::Observation& o = problem.observations[i];
+    const KeyframeObservation& obs = o.measured;
     ceres::CostFunction* cost =
         bf > 0.0 ? new RgbdReprojectionCost(obs.pixel, obs.depth, bf, camera.fx, camera.fy, camera.cx, camera.cy)
                  : ReprojectionError::Create(obs.pixel, camera.fx, camera.fy, camera.cx, camera.cy);
-    problem.AddResidualBlock(cost, loss, state->poses[r.keyframe].q, state->poses[r.keyframe].t,
-                             state->points[r.point].data());
+    ceres_problem.AddResidualBlock(cost, loss, state->poses[o.keyframe].q, state->poses[o.keyframe].t,
+                                   state->points[o.point].data());
   }
-  *solved = problem.NumResidualBlocks() > 0;
+  *solved = ceres_problem.NumResidualBlocks() > 0;
   if (!*solved) {
     delete loss;
     return true;
   }
-  for (size_t k = 0; k < keyframes.size(); ++k) {
-    if (!w.used[k] || !problem.HasParameterBlock(state->poses[k].q)) continue;
-    problem.SetManifold(state->poses[k].q, new ceres::EigenQuaternionManifold);
-    if (w.fixed[k]) {
-      problem.SetParameterBlockConstant(state->poses[k].q);
-      problem.SetParameterBlockConstant(state->poses[k].t);
+  for (size_t k = 0; k < problem.keyframes.size(); ++k) {
+    if (!ceres_problem.HasParameterBlock(state->poses[k].q)) continue;
+    ceres_problem.SetManifold(state->poses[k].q, new ceres::EigenQuaternionManifold);
+    if (problem.keyframes[k].fixed) {
+      ceres_problem.SetParameterBlockConstant(state->poses[k].q);
+      ceres_problem.SetParameterBlockConstant(state->poses[k].t);
     }
   }
   ceres::Solver::Options solver_options;
@@ -189,108 +191,132 @@ bool SolveRound(const std::deque<Keyframe>& keyframes, const Camera& camera, dou
   solver_options.logging_type = ceres::SILENT;
   solver_options.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &problem, &summary);
+  ceres::Solve(solver_options, &ceres_problem, &summary);
   report->iterations += static_cast<int>(summary.iterations.size());
   if (!summary.IsSolutionUsable()) report->failure = "ceres: " + summary.message;
   return summary.IsSolutionUsable();
 }
 
-// Final errors; every observation above the threshold now (not only those left out during the
-// rounds) is removed from the map.
-void MeasureAndPrune(const Camera& camera, double bf, double threshold_sq, const std::vector<Residual>& residuals,
-                     const std::vector<Eigen::Vector3d>& points, LocalMap* map, BundleAdjustmentReport* report) {
-  const auto& keyframes = map->keyframes();
-  double final_sq = 0.0, inlier_sq = 0.0;
-  int num_inliers = 0;
-  std::vector<std::pair<int64_t, int64_t>> outliers;
-  for (const Residual& r : residuals) {
-    const Keyframe& keyframe = keyframes[r.keyframe];
-    const KeyframeObservation& obs = keyframe.observations[r.observation];
-    const SquaredErrors e = Errors(camera, bf, keyframe.camera_from_world, points[r.point], obs);
-    final_sq += e.pixel;
-    if (e.full > threshold_sq) {
-      outliers.emplace_back(keyframe.id, obs.point_id);
-    } else {
-      inlier_sq += e.pixel;
-      ++num_inliers;
-    }
-  }
-  report->final_rms_px = std::sqrt(final_sq / static_cast<double>(residuals.size()));
-  report->final_inlier_rms_px = num_inliers > 0 ? std::sqrt(inlier_sq / num_inliers) : 0.0;
-  report->num_outliers_removed = static_cast<int>(outliers.size());
-  if (!outliers.empty()) map->RemoveObservations(outliers);
-}
-
-}  // namespace
-
-BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& camera,
-                                                const BundleAdjustmentOptions& options) {
-  options.Check();
-  BundleAdjustmentReport report;
-  if (!options.enabled) {
-    report.failure = "disabled";
-    return report;
-  }
-  const auto& keyframes = map.keyframes();
-  const size_t n = keyframes.size();
-  if (n < kMinFixedKeyframes + 1) {
-    report.failure = "needs at least 3 keyframes (2 stay fixed)";
-    return report;
-  }
-  const double bf = camera.fx * options.virtual_baseline_m;
-  const BaWindow w = SelectWindow(keyframes, options.window_keyframes);
-  std::vector<int64_t> point_ids;
-  const std::vector<Residual> residuals = CollectResiduals(keyframes, w, &point_ids);
-  if (residuals.empty()) {
-    report.failure = "no point is observed by two keyframes";
-    return report;
-  }
-
-  BaState state;
-  state.poses.resize(n);
-  for (size_t k = 0; k < n; ++k)
-    if (w.used[k]) state.poses[k] = ToBlock(keyframes[k].camera_from_world);
-  for (int64_t id : point_ids) state.points.push_back(map.FindPoint(id)->position_in_world);
-  double initial_sq = 0.0;
-  for (const Residual& r : residuals)
-    initial_sq += Errors(camera, bf, keyframes[r.keyframe].camera_from_world, state.points[r.point],
-                         keyframes[r.keyframe].observations[r.observation])
-                      .pixel;
-  for (size_t k = 0; k < n; ++k)
-    if (w.used[k] && !w.fixed[k]) ++report.num_keyframes_optimised;
-  report.num_keyframes_fixed = static_cast<int>(w.num_fixed);
-  report.num_points = static_cast<int>(state.points.size());
-  report.num_observations = static_cast<int>(residuals.size());
-  report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(residuals.size()));
-
-  // Round 1 over all observations; later rounds (only when the previous one found outliers)
-  // without them, so that they no longer pull on the solution even through the Huber loss.
+// Solves in rounds: round 1 over all observations; later rounds (only when the previous one
+// found outliers) without them, so that they no longer pull on the solution even through the
+// Huber loss. False when Ceres failed (report->failure says why).
+bool SolveInRounds(const LocalBaProblem& problem, const Camera& camera, double bf,
+                   const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report) {
   const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
-  std::vector<uint8_t> active(residuals.size(), 1);
+  std::vector<uint8_t> active(problem.observations.size(), 1);
   for (int round = 0; round < options.rounds; ++round) {
     bool solved = false;
-    if (!SolveRound(keyframes, camera, bf, w, residuals, active, options, &state, &report, &solved))
-      return report;  // nothing written back yet: the map is unchanged
+    if (!SolveRound(problem, camera, bf, active, options, state, report, &solved)) return false;
     if (!solved) break;
     bool any_new_outlier = false;
-    for (size_t i = 0; i < residuals.size(); ++i) {
-      const Residual& r = residuals[i];
-      if (active[i] && Errors(camera, bf, FromBlock(state.poses[r.keyframe]), state.points[r.point],
-                              keyframes[r.keyframe].observations[r.observation])
-                               .full > threshold_sq) {
+    for (size_t i = 0; i < problem.observations.size(); ++i) {
+      const LocalBaProblem::Observation& o = problem.observations[i];
+      if (active[i] &&
+          Errors(camera, bf, FromBlock(state->poses[o.keyframe]), state->points[o.point], o.measured).full >
+              threshold_sq) {
         active[i] = 0;
         any_new_outlier = true;
       }
     }
     if (!any_new_outlier) break;
   }
+  return true;
+}
 
-  for (size_t k = 0; k < n; ++k)
-    if (w.used[k] && !w.fixed[k]) map.SetKeyframePose(k, FromBlock(state.poses[k]));
-  for (size_t i = 0; i < point_ids.size(); ++i) map.SetPointPosition(point_ids[i], state.points[i]);
-  MeasureAndPrune(camera, bf, threshold_sq, residuals, state.points, &map, &report);
+// Final errors at the solved poses (`poses`, camera_from_world per problem keyframe); every
+// observation above the threshold now (not only those left out during the rounds) is an outlier.
+void MeasureOutliers(const LocalBaProblem& problem, const Camera& camera, double bf, double threshold_sq,
+                     const std::vector<Pose>& poses, LocalBaSolution* solution) {
+  BundleAdjustmentReport& report = solution->report;
+  double final_sq = 0.0, inlier_sq = 0.0;
+  int num_inliers = 0;
+  for (const LocalBaProblem::Observation& o : problem.observations) {
+    const SquaredErrors e = Errors(camera, bf, poses[o.keyframe], solution->points[o.point].second, o.measured);
+    final_sq += e.pixel;
+    if (e.full > threshold_sq) {
+      solution->outliers.emplace_back(problem.keyframes[o.keyframe].id, o.measured.point_id);
+    } else {
+      inlier_sq += e.pixel;
+      ++num_inliers;
+    }
+  }
+  report.final_rms_px = std::sqrt(final_sq / static_cast<double>(problem.observations.size()));
+  report.final_inlier_rms_px = num_inliers > 0 ? std::sqrt(inlier_sq / num_inliers) : 0.0;
+  report.num_outliers_removed = static_cast<int>(solution->outliers.size());
+}
+
+}  // namespace
+
+LocalBaProblem PrepareLocalBundleAdjustment(const LocalMap& map, const BundleAdjustmentOptions& options) {
+  options.Check();
+  LocalBaProblem problem;
+  if (!options.enabled) {
+    problem.failure = "disabled";
+    return problem;
+  }
+  if (map.num_keyframes() < kMinFixedKeyframes + 1) {
+    problem.failure = "needs at least 3 keyframes (2 stay fixed)";
+    return problem;
+  }
+  CollectObservations(map, SelectWindow(map.keyframes(), options.window_keyframes), &problem);
+  if (problem.observations.empty()) problem.failure = "no point is observed by two keyframes";
+  return problem;
+}
+
+LocalBaSolution SolveLocalBundleAdjustment(const LocalBaProblem& problem, const Camera& camera,
+                                           const BundleAdjustmentOptions& options) {
+  options.Check();
+  LocalBaSolution solution;
+  BundleAdjustmentReport& report = solution.report;
+  report.failure = problem.failure;
+  if (!problem.failure.empty()) return solution;
+  const double bf = camera.fx * options.virtual_baseline_m;
+  BaState state;
+  double initial_sq = 0.0;
+  for (const LocalBaProblem::KeyframeState& k : problem.keyframes) {
+    state.poses.push_back(ToBlock(k.camera_from_world));
+    ++(k.fixed ? report.num_keyframes_fixed : report.num_keyframes_optimised);
+  }
+  state.points = problem.points;
+  for (const LocalBaProblem::Observation& o : problem.observations)
+    initial_sq += Errors(camera, bf, problem.keyframes[o.keyframe].camera_from_world, problem.points[o.point],
+                         o.measured)
+                      .pixel;
+  report.num_points = static_cast<int>(problem.points.size());
+  report.num_observations = static_cast<int>(problem.observations.size());
+  report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(problem.observations.size()));
+  if (!SolveInRounds(problem, camera, bf, options, &state, &report)) return solution;
+
+  std::vector<Pose> poses;
+  for (size_t k = 0; k < problem.keyframes.size(); ++k) {
+    const LocalBaProblem::KeyframeState& keyframe = problem.keyframes[k];
+    poses.push_back(keyframe.fixed ? keyframe.camera_from_world : FromBlock(state.poses[k]));
+    if (!keyframe.fixed) solution.keyframe_poses.emplace_back(keyframe.id, poses.back());
+  }
+  for (size_t i = 0; i < problem.point_ids.size(); ++i) solution.points.emplace_back(problem.point_ids[i], state.points[i]);
+  const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
+  MeasureOutliers(problem, camera, bf, threshold_sq, poses, &solution);
   report.ok = true;
-  return report;
+  return solution;
+}
+
+void ApplyLocalBundleAdjustment(const LocalBaSolution& solution, LocalMap* map) {
+  if (!solution.report.ok) return;
+  const auto& keyframes = map->keyframes();
+  for (const auto& [id, camera_from_world] : solution.keyframe_poses) {
+    for (size_t k = 0; k < keyframes.size(); ++k)
+      if (keyframes[k].id == id) map->SetKeyframePose(k, camera_from_world);
+  }
+  for (const auto& [id, position_in_world] : solution.points) map->SetPointPosition(id, position_in_world);
+  if (!solution.outliers.empty()) map->RemoveObservations(solution.outliers);
+}
+
+BundleAdjustmentReport RunLocalBundleAdjustment(LocalMap& map, const Camera& camera,
+                                                const BundleAdjustmentOptions& options) {
+  const LocalBaSolution solution =
+      SolveLocalBundleAdjustment(PrepareLocalBundleAdjustment(map, options), camera, options);
+  ApplyLocalBundleAdjustment(solution, &map);
+  return solution.report;
 }
 
 void BindConfigKeys(const std::string& prefix, BundleAdjustmentOptions* o, ConfigRegistry* r) {
@@ -298,6 +324,8 @@ void BindConfigKeys(const std::string& prefix, BundleAdjustmentOptions* o, Confi
   r->Bind(prefix + ".window_keyframes", &o->window_keyframes, "recent keyframes optimised; older covisible ones fixed");
   r->Bind(prefix + ".virtual_baseline_m", &o->virtual_baseline_m,
           "stereo baseline that weighs the depth residual of an observation (0 = reprojection only)");
+  r->Bind(prefix + ".merge_delay_frames", &o->merge_delay_frames,
+          "frames a keyframe's BA runs beside tracking before it joins the map (0 = before the next frame)");
 }
 
 }  // namespace dynvo

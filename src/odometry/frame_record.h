@@ -21,7 +21,7 @@ struct StageTimes {
   double match_ms = 0;         // projection matching to the local map
   double pose_ms = 0;          // EPnP RANSAC and Ceres refinement
   double map_ms = 0;           // keyframe insertion and map upkeep
-  double local_ba_ms = 0;      // local bundle adjustment (keyframes only)
+  double local_ba_ms = 0;      // local bundle adjustment in this frame: its solve, or the wait for one beside tracking
   double detector_ms = 0;      // the person detector on this frame, on its own thread (beside tracking)
   double processing_ms = 0;    // everything after loading, wall time
 };

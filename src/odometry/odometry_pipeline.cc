@@ -62,7 +62,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
       refinements_(MakeRefinements(camera, config, executor_, &notices_)),
       features_(camera, config.features, image_area, executor_),
       tracker_(camera, config.tracking),
-      mapper_(camera, config.local_ba) {}
+      mapper_(camera, config.local_ba, &executor_) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
   const auto start = SteadyClock::now();
@@ -84,13 +84,11 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   }
   // 3. The pose from the static features against the local map; keyframes.
   out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed);
-  // 4. Local BA after a keyframe from a tracked pose; the tracker goes on from the refined pose.
+  // 4. Local BA after a keyframe from a tracked pose (at once, or beside tracking and merged
+  // some frames later); the tracker goes on from the refined pose.
   const bool tracked_keyframe = out.tracking.keyframe_inserted && out.tracking.state == TrackingState::kTracking;
   out.mapping = mapper_.Process(frame.index, tracked_keyframe, tracker_.mutable_map());
-  if (out.mapping.status == MappingStatus::kAdjusted) {
-    tracker_.AdoptRefinedKeyframe(out.mapping.keyframe_world_from_camera);
-    out.tracking.world_from_camera = out.mapping.keyframe_world_from_camera;
-  }
+  if (out.mapping.status == MappingStatus::kAdjusted) AdoptRefinedMap(frame.index, out);
   // 5. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)
@@ -99,6 +97,17 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   out.processing_ms = MillisecondsSince(start);
   processed.record = MakeFrameRecord(frame, out);
   return processed;
+}
+
+void OdometryPipeline::AdoptRefinedMap(size_t frame, FrameOutput& out) {
+  const MappingPacket& mapping = out.mapping;
+  if (mapping.keyframe_frame == frame) {  // this frame's own keyframe: its refined pose
+    tracker_.AdoptRefinedKeyframe(mapping.keyframe_world_from_camera);
+    out.tracking.world_from_camera = mapping.keyframe_world_from_camera;
+  } else {  // an earlier keyframe's: this frame moves with it
+    tracker_.AdoptMapCorrection(mapping.world_correction);
+    out.tracking.world_from_camera = mapping.world_correction * out.tracking.world_from_camera;
+  }
 }
 
 FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {

@@ -55,6 +55,9 @@ class OdometryPipeline {
   const std::vector<std::string>& notices() const { return notices_; }
 
  private:
+  // A local BA joined the map: the tracker and this frame's pose go on from the refined map.
+  void AdoptRefinedMap(size_t frame, FrameOutput& out);
+
   std::unique_ptr<Executor> own_executor_;  // when none is given: no workers
   Executor& executor_;
   std::vector<std::string> notices_;

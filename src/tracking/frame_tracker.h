@@ -110,6 +110,9 @@ class FrameTracker {
   // The mapper refined the keyframe the last Track inserted from a tracked pose: the motion
   // model continues from that refined pose (its world_from_camera).
   void AdoptRefinedKeyframe(const Pose& world_from_camera) { motion_.ReplaceLast(world_from_camera); }
+  // The mapper moved the map under the poses tracked since its BA began (a BA beside tracking):
+  // the motion model's poses move with it.
+  void AdoptMapCorrection(const Pose& world_correction) { motion_.Correct(world_correction); }
   const TrackerOptions& options() const { return options_; }
 
  private:

@@ -34,6 +34,11 @@ void ConstantVelocityModel::ReplaceLast(const Pose& world_from_camera) {
   last_world_from_camera_ = world_from_camera;
 }
 
+void ConstantVelocityModel::Correct(const Pose& world_correction) {
+  previous_world_from_camera_ = world_correction * previous_world_from_camera_;
+  last_world_from_camera_ = world_correction * last_world_from_camera_;
+}
+
 double ConstantVelocityModel::AngularSpeedTo(const Pose& world_from_camera, double stamp) const {
   if (num_poses_ == 0 || !(stamp > last_stamp_)) return 0.0;
   const Eigen::AngleAxisd rotation(last_world_from_camera_.linear().transpose() * world_from_camera.linear());

@@ -19,6 +19,10 @@ class ConstantVelocityModel {
   // motion from the pose before is recomputed. Does nothing before any pose was recorded.
   void ReplaceLast(const Pose& world_from_camera);
 
+  // The world moved under the recorded poses (a map refined after they were recorded): both
+  // become world_correction * pose, the motion between them unchanged.
+  void Correct(const Pose& world_correction);
+
   // Rotation speed (rad/s) from the last recorded pose to `world_from_camera` at `stamp`; 0
   // before any pose or when the stamp does not increase.
   double AngularSpeedTo(const Pose& world_from_camera, double stamp) const;
