@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <Eigen/Dense>
 #include <opencv2/calib3d.hpp>
+
+#include "core/error.h"
 
 namespace dynvo {
 namespace {
@@ -56,6 +59,13 @@ cv::Vec3b SampleBilinear(const cv::Mat& img, const cv::Vec2f& uv, float shade) {
   return out;
 }
 
+// Whether the result's three images are `w` x `h` with RenderResult's types.
+bool HoldsImage(const RenderResult& result, int w, int h) {
+  const cv::Size size(w, h);
+  return result.bgr.size() == size && result.bgr.type() == CV_8UC3 && result.depth.size() == size &&
+         result.depth.type() == CV_32F && result.object_id.size() == size && result.object_id.type() == CV_16U;
+}
+
 }  // namespace
 
 Renderer::Renderer(const Camera& camera) : camera_(camera) {
@@ -81,18 +91,19 @@ Renderer::Renderer(const Camera& camera) : camera_(camera) {
         rays_.at<cv::Vec2f>(y, x) = cv::Vec2f(p.x, p.y);
       }
   }
-  double mn[2] = {1e9, 1e9}, mx[2] = {-1e9, -1e9};
+  double x_lo = 1e9, x_hi = -1e9;
+  row_y_min_.assign(static_cast<size_t>(h), 1e9);
+  row_y_max_.assign(static_cast<size_t>(h), -1e9);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 2; ++c) {
-        mn[c] = std::min(mn[c], static_cast<double>(rays_.at<cv::Vec2f>(y, x)[c]));
-        mx[c] = std::max(mx[c], static_cast<double>(rays_.at<cv::Vec2f>(y, x)[c]));
-      }
-  const double mx_margin = 0.05 * (mx[0] - mn[0]), my_margin = 0.05 * (mx[1] - mn[1]);
-  x_min_ = mn[0] - mx_margin;
-  x_max_ = mx[0] + mx_margin;
-  y_min_ = mn[1] - my_margin;
-  y_max_ = mx[1] + my_margin;
+    for (int x = 0; x < w; ++x) {
+      const cv::Vec2f& ray = rays_.at<cv::Vec2f>(y, x);
+      x_lo = std::min(x_lo, static_cast<double>(ray[0]));
+      x_hi = std::max(x_hi, static_cast<double>(ray[0]));
+      row_y_min_[static_cast<size_t>(y)] = std::min(row_y_min_[static_cast<size_t>(y)], static_cast<double>(ray[1]));
+      row_y_max_[static_cast<size_t>(y)] = std::max(row_y_max_[static_cast<size_t>(y)], static_cast<double>(ray[1]));
+    }
+  x_min_ = x_lo - 0.05 * (x_hi - x_lo);
+  x_max_ = x_hi + 0.05 * (x_hi - x_lo);
 }
 
 Eigen::Vector2d Renderer::ProjectPoint(const Eigen::Vector3d& p) const {
@@ -137,12 +148,14 @@ void Renderer::RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pos
   *normal = u.cross(v).normalized();
   Polygon poly = {p0, p0 + u, p0 + u + v, p0 + v};
   poly = ClipPolygon(poly, Eigen::Vector3d(0, 0, 1), -kNear);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, 1, -buffers->y_min), 0);
+  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, -1, buffers->y_max), 0);
   if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(1, 0, -x_min_), 0);
   if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(-1, 0, x_max_), 0);
-  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, 1, -y_min_), 0);
-  if (poly.size() >= 3) poly = ClipPolygon(poly, Eigen::Vector3d(0, -1, y_max_), 0);
   cv::Rect box;
   if (poly.size() < 3 || !ScreenBox(poly, &box)) return;
+  box &= cv::Rect(0, buffers->row_begin, camera_.width, buffers->zbuf.rows);  // only the buffers' rows
+  if (box.empty()) return;
   Eigen::Matrix3d a;
   a.col(0) = u;
   a.col(1) = v;
@@ -157,9 +170,9 @@ void Renderer::RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pos
   const float z_near = static_cast<float>(kNear);
   for (int y = box.y; y < box.y + box.height; ++y) {
     const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
-    float* zrow = buffers->zbuf.ptr<float>(y);
-    int* irow = buffers->index.ptr<int>(y);
-    cv::Vec2f* crow = buffers->coords.ptr<cv::Vec2f>(y);
+    float* zrow = buffers->zbuf.ptr<float>(y - buffers->row_begin);
+    int* irow = buffers->index.ptr<int>(y - buffers->row_begin);
+    cv::Vec2f* crow = buffers->coords.ptr<cv::Vec2f>(y - buffers->row_begin);
     for (int x = box.x; x < box.x + box.width; ++x) {
       const float rx = ray[x][0], ry = ray[x][1];
       const float q2 = m20 * rx + m21 * ry + m22;
@@ -183,27 +196,49 @@ void Renderer::RasteriseQuad(const TexturedQuad& quad, int quad_index, const Pos
 }
 
 RenderResult Renderer::Render(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world) const {
+  RenderResult result;
+  RenderRows(quads, camera_from_world, 0, camera_.height, &result);
+  return result;
+}
+
+void Renderer::RenderRows(const std::vector<TexturedQuad>& quads, const Pose& camera_from_world, int row_begin,
+                          int row_end, RenderResult* result) const {
   const int w = camera_.width, h = camera_.height;
+  if (row_begin < 0 || row_end > h || row_begin >= row_end)
+    throw InputError("Renderer::RenderRows: rows [" + std::to_string(row_begin) + ", " + std::to_string(row_end) +
+                     ") are not a non-empty range inside [0, " + std::to_string(h) + ")");
+  if (!HoldsImage(*result, w, h)) {
+    result->bgr = cv::Mat(h, w, CV_8UC3, cv::Scalar::all(0));
+    result->depth = cv::Mat(h, w, CV_32F, cv::Scalar(0));
+    result->object_id = cv::Mat(h, w, CV_16U, cv::Scalar(0));
+  }
+  const int rows = row_end - row_begin;
   RasterBuffers buffers;
-  buffers.zbuf = cv::Mat(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
-  buffers.index = cv::Mat(h, w, CV_32S, cv::Scalar(-1));
-  buffers.coords = cv::Mat(h, w, CV_32FC2);
+  buffers.row_begin = row_begin;
+  // The rows' rays with a margin of 5% of their span, and at least a row: the whole image's
+  // bounds for a full render, a band's for a band, so quads beside the band are dropped early.
+  const auto first = row_y_min_.begin(), last = row_y_max_.begin();
+  const double y_lo = *std::min_element(first + row_begin, first + row_end);
+  const double y_hi = *std::max_element(last + row_begin, last + row_end);
+  const double margin = std::max(0.05 * (y_hi - y_lo), 1.0 / camera_.fy);
+  buffers.y_min = y_lo - margin;
+  buffers.y_max = y_hi + margin;
+  buffers.zbuf = cv::Mat(rows, w, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
+  buffers.index = cv::Mat(rows, w, CV_32S, cv::Scalar(-1));
+  buffers.coords = cv::Mat(rows, w, CV_32FC2);
   std::vector<Eigen::Vector3d> normals(quads.size(), Eigen::Vector3d::UnitZ());
   for (size_t qi = 0; qi < quads.size(); ++qi)
     RasteriseQuad(quads[qi], static_cast<int>(qi), camera_from_world, &buffers, &normals[qi]);
-  return Shade(quads, buffers, normals);
+  Shade(quads, buffers, normals, result);
 }
 
-RenderResult Renderer::Shade(const std::vector<TexturedQuad>& quads, const RasterBuffers& buffers,
-                             const std::vector<Eigen::Vector3d>& normals) const {
-  const int w = camera_.width, h = camera_.height;
-  RenderResult result;
-  result.bgr.create(h, w, CV_8UC3);
-  result.bgr.setTo(cv::Scalar::all(0));
-  result.depth.create(h, w, CV_32F);
-  result.depth.setTo(0);
-  result.object_id.create(h, w, CV_16U);
-  result.object_id.setTo(0);
+void Renderer::Shade(const std::vector<TexturedQuad>& quads, const RasterBuffers& buffers,
+                     const std::vector<Eigen::Vector3d>& normals, RenderResult* result) const {
+  const int w = camera_.width;
+  const cv::Range rows(buffers.row_begin, buffers.row_begin + buffers.index.rows);
+  result->bgr.rowRange(rows).setTo(cv::Scalar::all(0));
+  result->depth.rowRange(rows).setTo(0);
+  result->object_id.rowRange(rows).setTo(0);
   // Per quad: 1 / (focal * texel)^2 for the mip level choice.
   const double focal = 0.5 * (camera_.fx + camera_.fy);
   std::vector<float> inv_footprint2(quads.size(), 0.0f);
@@ -215,14 +250,14 @@ RenderResult Renderer::Shade(const std::vector<TexturedQuad>& quads, const Raste
   // Level L is used from (texels per pixel) >= 2^(L - 0.3); compared squared.
   float level_threshold2[8];
   for (int l = 0; l < 8; ++l) level_threshold2[l] = std::pow(2.0f, 2.0f * (l + 1) - 0.6f);
-  for (int y = 0; y < h; ++y) {
-    const int* irow = buffers.index.ptr<int>(y);
-    const float* zrow = buffers.zbuf.ptr<float>(y);
-    const cv::Vec2f* crow = buffers.coords.ptr<cv::Vec2f>(y);
+  for (int y = rows.start; y < rows.end; ++y) {
+    const int* irow = buffers.index.ptr<int>(y - rows.start);
+    const float* zrow = buffers.zbuf.ptr<float>(y - rows.start);
+    const cv::Vec2f* crow = buffers.coords.ptr<cv::Vec2f>(y - rows.start);
     const cv::Vec2f* ray = rays_.ptr<cv::Vec2f>(y);
-    cv::Vec3b* out = result.bgr.ptr<cv::Vec3b>(y);
-    float* dout = result.depth.ptr<float>(y);
-    std::uint16_t* iout = result.object_id.ptr<std::uint16_t>(y);
+    cv::Vec3b* out = result->bgr.ptr<cv::Vec3b>(y);
+    float* dout = result->depth.ptr<float>(y);
+    std::uint16_t* iout = result->object_id.ptr<std::uint16_t>(y);
     for (int x = 0; x < w; ++x) {
       const int qi = irow[x];
       if (qi < 0) continue;
@@ -245,7 +280,6 @@ RenderResult Renderer::Shade(const std::vector<TexturedQuad>& quads, const Raste
       out[x] = SampleBilinear(tex.levels[static_cast<size_t>(level)], crow[x], quad.shade);
     }
   }
-  return result;
 }
 
 }  // namespace dynvo

@@ -12,6 +12,7 @@
 #include "core/executor.h"
 #include "dataset/tum_camera.h"
 #include "synth/people_labels.h"
+#include "synth/rolling_shutter.h"
 #include "synth/tum_writer.h"
 
 namespace dynvo {
@@ -36,6 +37,10 @@ void SyntheticSequenceOptions::Check() const {
   RequireOption(motion_blur_samples >= 3 && motion_blur_samples % 2 == 1, "synth", "motion_blur_samples",
                 "odd and >= 3", motion_blur_samples);
   RequireOption(exposure_s > 0 && exposure_s < 1.0 / fps, "synth", "exposure_s", "in (0, 1/fps)", exposure_s);
+  RequireOption(rolling_shutter_readout_s >= 0 && rolling_shutter_readout_s < 1.0 / fps, "synth",
+                "rolling_shutter_readout_s", "in [0, 1/fps)", rolling_shutter_readout_s);
+  RequireOption(rolling_shutter_bands >= 1 && rolling_shutter_bands <= camera.height, "synth", "rolling_shutter_bands",
+                "in [1, camera.height]", rolling_shutter_bands);
   RequireOption(start_stamp >= 0 && start_stamp < 1e10, "synth", "start_stamp", "in [0, 1e10)", start_stamp);
   room.Check();
   noise.Check();
@@ -91,13 +96,20 @@ std::vector<bool> SyntheticWorld::MovingAt(double seconds) const {
   return moving;
 }
 
+RenderResult SyntheticWorld::RenderAt(double seconds) const {
+  return RenderRollingShutter(
+      renderer_, [this](double s) { return QuadsAt(s); },
+      [this](double s) { return Pose(WorldFromCamera(s).inverse()); }, seconds, options_.rolling_shutter_readout_s,
+      options_.rolling_shutter_bands);
+}
+
 SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   SyntheticFrame frame;
   frame.rgb_stamp = RgbStamp(index);
   frame.depth_stamp = DepthStamp(index);
   const double t = frame.rgb_stamp - options_.start_stamp;
   frame.world_from_camera = WorldFromCamera(t);
-  frame.clean = renderer_.Render(QuadsAt(t), frame.world_from_camera.inverse());
+  frame.clean = RenderAt(t);
   frame.mask = frame.clean.object_id > 0;
   if (options_.motion_blur) {
     const int n = options_.motion_blur_samples;
@@ -106,7 +118,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
     for (int k = 0; k < n; ++k) {
       if (k == n / 2) continue;  // the centre sample is the clean render
       const double ts = t + options_.exposure_s * (double(k) / (n - 1) - 0.5);
-      const RenderResult sub = renderer_.Render(QuadsAt(ts), WorldFromCamera(ts).inverse());
+      const RenderResult sub = RenderAt(ts);  // each row's time shifted alike
       cv::accumulate(sub.bgr, sum);
       frame.mask |= sub.object_id > 0;  // every pixel a moving object touched
     }
@@ -118,7 +130,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   cv::Mat depth_m = frame.clean.depth;
   if (options_.kinect_timing) {
     const double td = frame.depth_stamp - options_.start_stamp;
-    const RenderResult at_depth = renderer_.Render(QuadsAt(td), WorldFromCamera(td).inverse());
+    const RenderResult at_depth = RenderAt(td);
     depth_m = at_depth.depth;
     frame.mask |= at_depth.object_id > 0;  // the people's pixels in either image
     const double gain = 1.0 + 0.1 * std::sin(2 * 3.14159265358979323846 * t / 6.1 + options_.seed);

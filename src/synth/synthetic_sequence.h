@@ -39,9 +39,13 @@ struct SyntheticSequenceOptions {
   bool kinect_timing = false;                             // the depth image rendered at its own stamp, a few ms after
                                // the colour image (Kinect v1), and a slow auto-exposure drift
                                // of the colour image's brightness (+-10%)
-  double start_stamp = 1700000000.0;  // seconds, stamp of the first frame
-  RoomOptions room;                   // the static scene
-  SensorNoiseOptions noise;           // sensor effects
+  double rolling_shutter_readout_s = 0;  // seconds from the first to the last row's exposure, colour and
+                                         // depth alike, in [0, 1/fps) (0 = global shutter; see
+                                         // synth/rolling_shutter.h); dynvo-synth sets 28 ms for tum_*
+  int rolling_shutter_bands = 16;        // horizontal bands rendered at their own time, in [1, camera.height]
+  double start_stamp = 1700000000.0;     // seconds, stamp of the first frame
+  RoomOptions room;                      // the static scene
+  SensorNoiseOptions noise;              // sensor effects
 
   SyntheticSequenceOptions();
   // Throws InputError naming the key ("synth.frames must be >= 1, got 0").
@@ -56,7 +60,8 @@ struct SyntheticFrame {
   cv::Mat bgr;             // CV_8UC3 with sensor effects
   cv::Mat depth16;         // CV_16U, depth_factor units, 0 = no reading
   cv::Mat mask;            // CV_8U, 255 where a moving object is seen
-  RenderResult clean;      // the noise-free render at rgb_stamp (depth in metres, ids)
+  RenderResult clean;      // the noise-free render at rgb_stamp, rows at their rolling-shutter
+                           // times (depth in metres, ids)
 };
 
 // The scene, people and camera path of one sequence; renders any frame on demand.
@@ -77,6 +82,9 @@ class SyntheticWorld {
   // scenarios always move; the TUM scenarios' people as StagePersonSpeed says.
   std::vector<bool> MovingAt(double seconds) const;
   const Renderer& renderer() const { return renderer_; }
+  // The noise-free image exposed around `seconds` (after start_stamp): WorldFromCamera and
+  // QuadsAt rendered at `seconds`, or with a rolling shutter each row at its own time.
+  RenderResult RenderAt(double seconds) const;
 
   // Frame `index` with sensor effects; the same for the same options.
   SyntheticFrame RenderFrame(int index) const;

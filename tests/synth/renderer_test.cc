@@ -4,8 +4,10 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "core/error.h"
 #include "core/pose.h"
 #include "synth/procedural_texture.h"
+#include "synth/scene.h"
 
 namespace dynvo {
 namespace {
@@ -156,6 +158,60 @@ TEST(Renderer, AlphaTexturesAreCutOut) {
   const RenderResult r = renderer.Render({quad}, Pose::Identity());
   EXPECT_EQ(r.object_id.at<std::uint16_t>(60, 60), 0);   // x = -0.15 m: transparent half
   EXPECT_EQ(r.object_id.at<std::uint16_t>(60, 100), 1);  // x = +0.16 m: opaque half
+}
+
+// The number of pixels where two renders differ in colour, depth or object id.
+int DifferingPixels(const RenderResult& a, const RenderResult& b) {
+  cv::Mat colour;
+  cv::absdiff(a.bgr, b.bgr, colour);
+  std::vector<cv::Mat> channels;
+  cv::split(colour, channels);
+  return cv::countNonZero((channels[0] | channels[1] | channels[2]) | (a.depth != b.depth) |
+                          (a.object_id != b.object_id));
+}
+
+TEST(Renderer, RowBandsAssembleTheFullRenderByteForByte) {
+  Camera camera = SmallCamera();
+  camera.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};  // TUM fr1: wider screen-box margins
+  const Renderer renderer(camera);
+  RoomOptions room;
+  room.furniture = 4;
+  room.texel_size_m = 0.02;
+  const std::vector<TexturedQuad> quads = MakeRoomScene(room, 3);
+  // Looking along the room's y axis (forward), tilted a little, from 1.3 m up.
+  const Pose camera_from_world = PoseFromAxisAngle({-1.5, 0.1, 0.05}, {0.2, 0.3, 1.3}).inverse();
+  const RenderResult full = renderer.Render(quads, camera_from_world);
+  ASSERT_GT(cv::countNonZero(full.depth), 0.9 * full.depth.total());  // the room fills the view
+  for (int bands : {2, 7, 16, camera.height}) {
+    RenderResult assembled;
+    for (int k = 0; k < bands; ++k)
+      renderer.RenderRows(quads, camera_from_world, camera.height * k / bands, camera.height * (k + 1) / bands,
+                          &assembled);
+    EXPECT_EQ(DifferingPixels(assembled, full), 0) << bands << " bands";
+  }
+}
+
+TEST(Renderer, RenderRowsWritesOnlyItsRowsAndRejectsBadRanges) {
+  const Camera camera = SmallCamera();
+  const Renderer renderer(camera);
+  TexturedQuad wall;
+  wall.origin = {-5, -5, 2.0};
+  wall.edge_u = {10, 0, 0};
+  wall.edge_v = {0, 10, 0};
+  wall.texture = GradientTexture(64, 0.2);
+  wall.object_id = 2;
+  RenderResult result;
+  renderer.RenderRows({wall}, Pose::Identity(), 30, 50, &result);
+  ASSERT_EQ(result.depth.size(), cv::Size(camera.width, camera.height));
+  EXPECT_EQ(cv::countNonZero(result.object_id == 2), 20 * camera.width);
+  EXPECT_EQ(cv::countNonZero(result.object_id.rowRange(30, 50) == 2), 20 * camera.width);
+  // Rows already drawn stay; the band drawn again shows the new scene (nothing here).
+  renderer.RenderRows({}, Pose::Identity(), 40, 45, &result);
+  EXPECT_EQ(cv::countNonZero(result.object_id == 2), 15 * camera.width);
+  EXPECT_EQ(cv::countNonZero(result.depth.rowRange(40, 45)), 0);
+  EXPECT_THROW(renderer.RenderRows({wall}, Pose::Identity(), -1, 10, &result), InputError);
+  EXPECT_THROW(renderer.RenderRows({wall}, Pose::Identity(), 10, 10, &result), InputError);
+  EXPECT_THROW(renderer.RenderRows({wall}, Pose::Identity(), 100, camera.height + 1, &result), InputError);
 }
 
 }  // namespace

@@ -160,6 +160,30 @@ TEST(SyntheticSequence, ChecksOptionsNamingTheKey) {
   EXPECT_THROW(TumIntrinsics("fr4", "--intrinsics"), InputError);
 }
 
+TEST(SyntheticSequence, ChecksTheRollingShutterReadoutAndBands) {
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kNone);  // 5 fps: the readout must stay under 0.2 s
+  for (double readout : {0.0, 0.028, 0.1999}) {
+    o.rolling_shutter_readout_s = readout;
+    EXPECT_NO_THROW(o.Check()) << readout;
+  }
+  for (double readout : {-0.001, 0.2, 0.5}) {
+    o.rolling_shutter_readout_s = readout;
+    try {
+      o.Check();
+      ADD_FAILURE() << "readout " << readout << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("synth.rolling_shutter_readout_s"), std::string::npos) << e.what();
+    }
+  }
+  o = SmallOptions(Scenario::kNone);
+  for (int bands : {0, 121}) {  // the camera has 120 rows
+    o.rolling_shutter_bands = bands;
+    EXPECT_THROW(o.Check(), InputError) << bands;
+  }
+  o.rolling_shutter_bands = 120;
+  EXPECT_NO_THROW(o.Check());
+}
+
 TEST(SyntheticSequence, RefusesToOverwriteANonEmptyFolderWithoutForce) {
   test::TempDir dir;
   dir.Write("out/notes.txt", "keep me");

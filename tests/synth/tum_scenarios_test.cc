@@ -1,5 +1,5 @@
 // dynvo-synth's TUM scenarios: the articulated photo people in the synthetic room, with the
-// Kinect's timing (depth a few ms after colour) and an exposure drift.
+// Kinect's timing (depth a few ms after colour), an exposure drift and a rolling shutter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "synth/people_labels.h"
+#include "synth/rolling_shutter.h"
 #include "synth/stage_people.h"
 #include "synth/synthetic_sequence.h"
 
@@ -26,6 +27,7 @@ SyntheticSequenceOptions SmallOptions(Scenario scenario) {
   o.camera.width = 320;
   o.camera.height = 240;
   o.kinect_timing = true;
+  o.rolling_shutter_readout_s = 0.028;  // as dynvo-synth sets for these scenarios
   return o;
 }
 
@@ -55,7 +57,7 @@ TEST(TumScenarios, DepthIsTakenAtItsOwnStampAndTheMaskCoversBoth) {
     const SyntheticFrame frame = world.RenderFrame(i);
     ASSERT_GT(world.DepthStamp(i), world.RgbStamp(i));
     const double td = world.DepthStamp(i) - 1700000000.0;
-    const RenderResult at_depth = world.renderer().Render(world.QuadsAt(td), world.WorldFromCamera(td).inverse());
+    const RenderResult at_depth = world.RenderAt(td);
     const cv::Mat people_at_rgb = frame.clean.object_id > 0, people_at_depth = at_depth.object_id > 0;
     frames_where_people_moved += cv::countNonZero(people_at_rgb != people_at_depth) > 20;
     EXPECT_EQ(cv::countNonZero((people_at_rgb | people_at_depth) & ~frame.mask), 0) << "frame " << i;
@@ -94,6 +96,52 @@ TEST(TumScenarios, SameSeedSameFrame) {
   EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(a.depth16, b.depth16, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(a.mask, b.mask, cv::NORM_INF), 0);
+}
+
+// Under the rpy path's fastest turn, every band of the colour image is the scene at its own
+// time, and the mask is exactly the people's pixels of every band of every render that made
+// the frame: the blur samples and the depth image.
+TEST(TumScenarios, RollingShutterBandsAtTheirOwnTimesAndTheMaskCoversEveryRender) {
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kTumWalking);
+  o.camera_path = CameraPathPreset::kRpy;
+  o.motion_blur = true;
+  const SyntheticWorld world(o);
+  const int i = 45;  // 1.5 s: the yaw (period 6 s) turns at its fastest, 0.26 rad/s
+  const SyntheticFrame frame = world.RenderFrame(i);
+  const double t = world.RgbStamp(i) - o.start_stamp, td = world.DepthStamp(i) - o.start_stamp;
+  EXPECT_TRUE(frame.world_from_camera.matrix() == world.WorldFromCamera(t).matrix()) << "ground truth at the stamp";
+  const std::vector<ShutterBand> bands = RollingShutterBands(o.camera.height, o.rolling_shutter_readout_s, 16);
+  int bands_at_their_time = 0;
+  for (const ShutterBand& band : bands) {
+    const double s = t + band.offset_s;
+    const RenderResult global = world.renderer().Render(world.QuadsAt(s), world.WorldFromCamera(s).inverse());
+    const cv::Range rows(band.row_begin, band.row_end);
+    bands_at_their_time += cv::norm(frame.clean.bgr.rowRange(rows), global.bgr.rowRange(rows), cv::NORM_INF) == 0 &&
+                           cv::norm(frame.clean.depth.rowRange(rows), global.depth.rowRange(rows), cv::NORM_INF) == 0;
+  }
+  EXPECT_EQ(bands_at_their_time, 16);
+  const RenderResult global = world.renderer().Render(world.QuadsAt(t), world.WorldFromCamera(t).inverse());
+  EXPECT_GT(cv::norm(frame.clean.bgr, global.bgr, cv::NORM_INF), 0) << "the rolling shutter changed nothing";
+  cv::Mat people = world.RenderAt(td).object_id > 0;
+  for (int k = 0; k < o.motion_blur_samples; ++k) {
+    const double ts = t + o.exposure_s * (double(k) / (o.motion_blur_samples - 1) - 0.5);
+    people |= world.RenderAt(ts).object_id > 0;
+  }
+  ASSERT_GT(cv::countNonZero(people), 1000);
+  EXPECT_EQ(cv::countNonZero(people != frame.mask), 0);
+}
+
+TEST(TumScenarios, ZeroReadoutIsTheGlobalShutterFrame) {
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kTumWalking);
+  o.camera_path = CameraPathPreset::kRpy;
+  o.rolling_shutter_readout_s = 0;
+  const SyntheticWorld world(o);
+  const SyntheticFrame frame = world.RenderFrame(45);
+  const double t = world.RgbStamp(45) - o.start_stamp;
+  const RenderResult global = world.renderer().Render(world.QuadsAt(t), world.WorldFromCamera(t).inverse());
+  EXPECT_EQ(cv::norm(frame.clean.bgr, global.bgr, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(frame.clean.depth, global.depth, cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(frame.clean.object_id, global.object_id, cv::NORM_INF), 0);
 }
 
 }  // namespace
