@@ -68,7 +68,7 @@ class Source:
 #   dev:        parameters and defaults may be tuned on it.
 #   validation: reported only, never used to choose a parameter or default.
 # Each source gives one sequence per preset (PRESETS). Twins: INSERT: the real folder itself;
-# SYNTH: dynvo-synth with the same camera path and seed and `--scenario none`.
+# SYNTH: dynvo-synth with the same camera path, seed and sensor and `--scenario none`.
 #      split         kind    real folder (INSERT) or camera path (SYNTH)  seed  person
 SOURCES = (
     Source("dev",        INSERT, "rgbd_dataset_freiburg1_rpy_head150",       1, DEV_PERSON),
@@ -137,7 +137,8 @@ def source_rows(source: Source, frames: int, seq_dir: str, shared: str) -> list[
             return ("dynvo-synth", "--scenario", scenario, "--camera-path", source.where,
                     "--seed", seed, "--frames", str(frames))
         twin_name = f"synth_none_{source.where}_s{seed}"
-        twin = Sequence(twin_name, os.path.join(seq_dir, twin_name), synth("none"))
+        # The twin has the people's sensor (the tum_* scenarios always have Kinect v1 timing).
+        twin = Sequence(twin_name, os.path.join(seq_dir, twin_name), synth("none") + ("--kinect-sensor",))
         available = True
         made = [(f"synth_{p}_{source.where}_s{seed}", synth(p)) for p in PRESETS]
     return [RowSpec(source.split, source.kind, Sequence(name, os.path.join(seq_dir, name), command),
@@ -289,7 +290,7 @@ def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
             split, ", ".join(configs)),
         "**RPE**: per-second RPE, translational RMSE in m/s (`rpe GT EST`); in parentheses its"
         " ratio to the same config's RPE on the twin (the same real frames without people, or"
-        " the same camera path and seed with `--scenario none`). **ATE**: SE(3)-aligned RMSE in m"
+        " the same camera path, seed and Kinect sensor timing with `--scenario none --kinect-sensor`). **ATE**: SE(3)-aligned RMSE in m"
         " (`ate GT EST`, Horn alignment, no scale). **mask R/P/IoU**: recall, precision and IoU"
         " of the dynamic mask against the generated masks, over all pixels of all frames (`-`:"
         " none). **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
