@@ -59,5 +59,18 @@ TEST(ConstantVelocityModel, AngularSpeedToANewPose) {
   EXPECT_EQ(model.AngularSpeedTo(turned, 1.0), 0.0);  // stamp does not increase
 }
 
+TEST(ConstantVelocityModel, CorrectMovesBothPosesAndKeepsTheMotion) {
+  ConstantVelocityModel model;
+  const Pose a = PoseFromAxisAngle({0.1, 0.0, 0.2}, {1, 2, 3});
+  const Pose step = PoseFromAxisAngle({0.0, 0.04, 0.0}, {0.02, 0, 0.01});
+  model.Update(a, 0.0);
+  model.Update(a * step, 0.04);
+  // The world moved under both poses: the prediction moves with it, the motion does not change.
+  const Pose correction = PoseFromAxisAngle({0.0, 0.0, 0.05}, {0.1, 0, 0});
+  model.Correct(correction);
+  EXPECT_TRUE(model.Predict(0.08).isApprox(correction * a * step * step, 1e-12));
+  EXPECT_TRUE(model.last_motion().isApprox(step, 1e-12));
+}
+
 }  // namespace
 }  // namespace dynvo
