@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Generates the dynamic test sequences that need no download, into one folder, and prints
 # the path of each sequence folder on stdout (one a line, in this order).
-# People as TUM films them (articulated photo people, in view from the first frame, Kinect
-# timing, motion blur):
+# People as TUM films them (articulated photo people, in view from the first frame), all with
+# Kinect v1 sensor timing (motion blur, depth offset, exposure drift, rolling shutter;
+# dynvo-synth --kinect-sensor):
 #   synth_none_xyz                  dynvo-synth, camera path xyz, no people: the static twin
 #   synth_tum_<scenario>_xyz        dynvo-synth, same camera path, scenarios tum_walking,
 #                                   tum_toward, tum_away, tum_sitting
@@ -40,11 +41,11 @@ mkdir -p "$out"
 
 synth() {  # name scenario camera_path
   local dir="$out/$1"
-  local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed"
+  local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed, rolling shutter 28 ms"
   if ! { [ -f "$dir/rgb.txt" ] && grep -qxF "$header" "$dir/rgb.txt" &&
          [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ]; }; then
     "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" --seed "$seed" \
-      --out "$dir" --force >&2
+      --kinect-sensor --out "$dir" --force >&2
   fi
   echo "$dir"
 }

@@ -154,8 +154,10 @@ Trajectory SyntheticWorld::Groundtruth() const {
 
 SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& options, const std::string& folder) {
   const SyntheticWorld world(options);
+  const long readout_ms = std::lround(options.rolling_shutter_readout_s * 1000.0);
   TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) + ", camera path " +
-                               CameraPathPresetName(options.camera_path) + ", seed " + std::to_string(options.seed));
+                               CameraPathPresetName(options.camera_path) + ", seed " + std::to_string(options.seed) +
+                               (readout_ms > 0 ? ", rolling shutter " + std::to_string(readout_ms) + " ms" : ""));
   SyntheticSequenceSummary summary;
   double ratio_sum = 0;
   PeopleLabels labels("dynvo-synth");
