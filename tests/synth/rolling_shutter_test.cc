@@ -13,6 +13,7 @@
 #include "core/camera.h"
 #include "core/pose.h"
 #include "synth/scene.h"
+#include "synth/synthetic_sequence.h"
 
 namespace dynvo {
 namespace {
@@ -67,6 +68,17 @@ double BestShift(const cv::Mat& a_bgr, const cv::Mat& b_bgr, int row, int x0, in
   return static_cast<double>(k) - max_shift + step;
 }
 
+// A camera 160 pixels wide and `height` rows tall, its principal point at the centre.
+Camera SmallCamera(int height) {
+  Camera camera;
+  camera.width = 160;
+  camera.height = height;
+  camera.fx = camera.fy = 134.0;
+  camera.cx = 79.5;
+  camera.cy = (height - 1) / 2.0;
+  return camera;
+}
+
 TEST(RollingShutter, RowOffsetsSpanTheReadoutWithTheMiddleRowAtTheStamp) {
   EXPECT_DOUBLE_EQ(RowExposureOffset(0, 481, kReadout), -kReadout / 2);
   EXPECT_DOUBLE_EQ(RowExposureOffset(240, 481, kReadout), 0.0);
@@ -93,12 +105,7 @@ TEST(RollingShutter, RowOffsetsSpanTheReadoutWithTheMiddleRowAtTheStamp) {
 // With one band per row the rolling shutter is exact: every row is the global render at its
 // own time, the top row at t - readout/2, the middle row at t, the bottom row at t + readout/2.
 TEST(RollingShutter, EachRowIsTheSceneAtItsOwnTimeUnderConstantRotation) {
-  Camera camera;
-  camera.width = 160;
-  camera.height = 121;  // odd: the middle row 60 is at the stamp exactly
-  camera.fx = camera.fy = 134.0;
-  camera.cx = 79.5;
-  camera.cy = 60.0;
+  const Camera camera = SmallCamera(121);  // odd: the middle row 60 is at the stamp exactly
   const Renderer renderer(camera);
   const std::vector<TexturedQuad> quads = Room(0.02);
   const auto quads_at = [&quads](double) { return quads; };
@@ -126,13 +133,7 @@ TEST(RollingShutter, EachRowIsTheSceneAtItsOwnTimeUnderConstantRotation) {
 // estimate adds up to 0.4 pixel. The global shutter image is 14.1 pixels away at the top and
 // bottom rows (their bands at -+13.2 ms).
 TEST(RollingShutter, SixteenBandsStayWithinAPixelOfEachRowsTime) {
-  Camera camera;  // TUM fr3, 640x480 (the generator's default)
-  camera.width = 640;
-  camera.height = 480;
-  camera.fx = 535.4;
-  camera.fy = 539.2;
-  camera.cx = 320.1;
-  camera.cy = 247.6;
+  const Camera camera = TumIntrinsics("fr3", "test");  // 640x480, the generator's default
   const Renderer renderer(camera);
   const std::vector<TexturedQuad> quads = Room(0.01);
   const auto quads_at = [&quads](double) { return quads; };
@@ -157,12 +158,7 @@ TEST(RollingShutter, SixteenBandsStayWithinAPixelOfEachRowsTime) {
 }
 
 TEST(RollingShutter, ZeroReadoutIsTheGlobalRenderByteForByte) {
-  Camera camera;
-  camera.width = 160;
-  camera.height = 120;
-  camera.fx = camera.fy = 134.0;
-  camera.cx = 79.5;
-  camera.cy = 59.5;
+  const Camera camera = SmallCamera(120);
   const Renderer renderer(camera);
   const std::vector<TexturedQuad> quads = Room(0.02);
   const auto quads_at = [&quads](double) { return quads; };
