@@ -279,9 +279,8 @@ LocalBaSolution SolveLocalBundleAdjustment(const LocalBaProblem& problem, const 
   }
   state.points = problem.points;
   for (const LocalBaProblem::Observation& o : problem.observations)
-    initial_sq += Errors(camera, bf, problem.keyframes[o.keyframe].camera_from_world, problem.points[o.point],
-                         o.measured)
-                      .pixel;
+    initial_sq +=
+        Errors(camera, bf, problem.keyframes[o.keyframe].camera_from_world, problem.points[o.point], o.measured).pixel;
   report.num_points = static_cast<int>(problem.points.size());
   report.num_observations = static_cast<int>(problem.observations.size());
   report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(problem.observations.size()));
@@ -293,7 +292,8 @@ LocalBaSolution SolveLocalBundleAdjustment(const LocalBaProblem& problem, const 
     poses.push_back(keyframe.fixed ? keyframe.camera_from_world : FromBlock(state.poses[k]));
     if (!keyframe.fixed) solution.keyframe_poses.emplace_back(keyframe.id, poses.back());
   }
-  for (size_t i = 0; i < problem.point_ids.size(); ++i) solution.points.emplace_back(problem.point_ids[i], state.points[i]);
+  for (size_t i = 0; i < problem.point_ids.size(); ++i)
+    solution.points.emplace_back(problem.point_ids[i], state.points[i]);
   const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
   MeasureOutliers(problem, camera, bf, threshold_sq, poses, &solution);
   report.ok = true;

@@ -76,10 +76,10 @@ struct LocalBaProblem {
 
 // What a solved local BA changes in the map (ApplyLocalBundleAdjustment).
 struct LocalBaSolution {
-  BundleAdjustmentReport report;                                // report.ok false: change nothing
-  std::vector<std::pair<int64_t, Pose>> keyframe_poses;         // optimised keyframes: id, camera_from_world
-  std::vector<std::pair<int64_t, Eigen::Vector3d>> points;      // id, position in the world
-  std::vector<std::pair<int64_t, int64_t>> outliers;            // (keyframe id, point id) to remove
+  BundleAdjustmentReport report;                            // report.ok false: change nothing
+  std::vector<std::pair<int64_t, Pose>> keyframe_poses;     // optimised keyframes: id, camera_from_world
+  std::vector<std::pair<int64_t, Eigen::Vector3d>> points;  // id, position in the world
+  std::vector<std::pair<int64_t, int64_t>> outliers;        // (keyframe id, point id) to remove
 };
 
 // The problem of the newest `window_keyframes` keyframes of `map` and the points they observe:

@@ -36,9 +36,9 @@ std::string ToString(MappingStatus status);
 struct MappingPacket {
   size_t frame = 0;
   MappingStatus status = MappingStatus::kIdle;
-  std::string failure;  // kFailed: why
-  bool started = false;  // a BA of this frame's keyframe began (beside tracking when delayed)
-  size_t keyframe_frame = 0;                           // kAdjusted: the frame whose keyframe was newest in the BA
+  std::string failure;        // kFailed: why
+  bool started = false;       // a BA of this frame's keyframe began (beside tracking when delayed)
+  size_t keyframe_frame = 0;  // kAdjusted: the frame whose keyframe was newest in the BA
   Pose keyframe_world_from_camera = Pose::Identity();  // kAdjusted: that keyframe's refined pose
   // kAdjusted: how the BA moved that keyframe, refined_world_from_camera * old^-1; the
   // keyframes and points added to the map since the BA began were moved by it too.
@@ -64,10 +64,10 @@ class LocalMapper {
   // A BA that began at a keyframe and has not joined the map yet.
   struct PendingAdjustment {
     Task<LocalBaSolution> solution;
-    size_t frame = 0;                   // the frame of its newest keyframe
-    int64_t keyframe_id = -1;           // that keyframe's id
-    Pose old_camera_from_world;         // its pose when the BA began
-    int64_t newest_point_id = -1;       // points above this id were added since
+    size_t frame = 0;                               // the frame of its newest keyframe
+    int64_t keyframe_id = -1;                       // that keyframe's id
+    Pose old_camera_from_world = Pose::Identity();  // its pose when the BA began
+    int64_t newest_point_id = -1;                   // points above this id were added since
   };
   void Begin(size_t frame, const LocalMap& map);
   void Merge(LocalMap& map, MappingPacket* packet);

@@ -48,7 +48,7 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
   }
   // The people found join the mask when judged moving.
   refinements.push_back(std::make_unique<PeopleRefinement>(camera, std::make_unique<YoloDetector>(config.detector),
-                                                            config.detector, executor));
+                                                           config.detector, executor));
   return refinements;
 }
 

@@ -99,8 +99,7 @@ TEST(LocalMapper, MovesWhatWasAddedMeanwhileWithTheRefinedKeyframe) {
   EXPECT_EQ(mapper.Process(10, true, s.map).status, MappingStatus::kIdle);
   const Pose newer_from_old = PoseFromAxisAngle({0, 0.05, 0}, {-0.1, 0, 0});
   const Eigen::Vector3d point_in_old(0.2, -0.1, 2.5);  // in the old keyframe's camera
-  const int64_t point =
-      s.map.AddPoint(off.inverse() * point_in_old, cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 12);
+  const int64_t point = s.map.AddPoint(off.inverse() * point_in_old, cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 12);
   Keyframe newer;
   newer.frame_index = 12;
   newer.camera_from_world = newer_from_old * off;

@@ -290,7 +290,8 @@ def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
             split, ", ".join(configs)),
         "**RPE**: per-second RPE, translational RMSE in m/s (`rpe GT EST`); in parentheses its"
         " ratio to the same config's RPE on the twin (the same real frames without people, or"
-        " the same camera path, seed and Kinect sensor timing with `--scenario none --kinect-sensor`). **ATE**: SE(3)-aligned RMSE in m"
+        " the same camera path, seed and Kinect sensor timing with `--scenario none"
+        " --kinect-sensor`). **ATE**: SE(3)-aligned RMSE in m"
         " (`ate GT EST`, Horn alignment, no scale). **mask R/P/IoU**: recall, precision and IoU"
         " of the dynamic mask against the generated masks, over all pixels of all frames (`-`:"
         " none). **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
