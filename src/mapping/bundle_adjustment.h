@@ -51,7 +51,6 @@ struct BundleAdjustmentReport {
   double initial_rms_px = 0.0;       // pixel reprojection RMS over all used observations, before
   double final_rms_px = 0.0;         // the same observations after optimisation (outliers included)
   double final_inlier_rms_px = 0.0;  // after optimisation, the observations kept
-  double solve_ms = 0.0;             // wall time of the solve (set by its caller)
 };
 
 // A local BA's input, copied out of the map so that it can be solved beside tracking while the

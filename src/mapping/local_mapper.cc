@@ -64,17 +64,13 @@ void LocalMapper::Begin(size_t frame, const LocalMap& map) {
   pending_.old_camera_from_world = newest.camera_from_world;
   pending_.newest_point_id = map.points().empty() ? -1 : map.points().rbegin()->first;
   auto solve = [problem = PrepareLocalBundleAdjustment(map, options_), camera = camera_, options = options_] {
-    const SteadyClock::time_point start = SteadyClock::now();
-    LocalBaSolution solution = SolveLocalBundleAdjustment(problem, camera, options);
-    solution.report.solve_ms = MillisecondsSince(start);
-    return solution;
+    return SolveLocalBundleAdjustment(problem, camera, options);
   };
   pending_.solution = executor_.Submit(std::move(solve));
 }
 
 void LocalMapper::Merge(LocalMap& map, MappingPacket* packet) {
   const LocalBaSolution solution = pending_.solution.Get();
-  packet->ba_ms = solution.report.solve_ms;
   const size_t index = FindKeyframe(map, pending_.keyframe_id);
   if (!solution.report.ok || index == map.num_keyframes()) {
     packet->status = MappingStatus::kFailed;

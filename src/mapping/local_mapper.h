@@ -45,7 +45,6 @@ struct MappingPacket {
   Pose world_correction = Pose::Identity();
   double rms_px = 0.0;  // kAdjusted: final inlier RMS of the BA
   double ms = 0.0;      // wall time of this call (the wait for a BA beside tracking included)
-  double ba_ms = 0.0;   // kAdjusted/kFailed: the BA's own solve time
 };
 
 class LocalMapper {
