@@ -193,6 +193,7 @@ bool SolveRound(const LocalBaProblem& problem, const Camera& camera, double bf, 
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &ceres_problem, &summary);
   report->iterations += static_cast<int>(summary.iterations.size());
+  report->converged = report->converged && summary.termination_type == ceres::CONVERGENCE;
   if (!summary.IsSolutionUsable()) report->failure = "ceres: " + summary.message;
   return summary.IsSolutionUsable();
 }
@@ -204,6 +205,7 @@ bool SolveInRounds(const LocalBaProblem& problem, const Camera& camera, double b
                    const BundleAdjustmentOptions& options, BaState* state, BundleAdjustmentReport* report) {
   const double threshold_sq = options.outlier_threshold_px * options.outlier_threshold_px;
   std::vector<uint8_t> active(problem.observations.size(), 1);
+  report->converged = true;
   for (int round = 0; round < options.rounds; ++round) {
     bool solved = false;
     if (!SolveRound(problem, camera, bf, active, options, state, report, &solved)) return false;

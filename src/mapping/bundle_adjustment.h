@@ -48,6 +48,7 @@ struct BundleAdjustmentReport {
   int num_observations = 0;  // residual blocks
   int num_outliers_removed = 0;
   int iterations = 0;                // Ceres iterations, all rounds
+  bool converged = false;            // every round met Ceres' tolerances (none stopped at max_iterations)
   double initial_rms_px = 0.0;       // pixel reprojection RMS over all used observations, before
   double final_rms_px = 0.0;         // the same observations after optimisation (outliers included)
   double final_inlier_rms_px = 0.0;  // after optimisation, the observations kept

@@ -84,6 +84,7 @@ void LocalMapper::Merge(LocalMap& map, MappingPacket* packet) {
   packet->keyframe_world_from_camera = refined_camera_from_world.inverse();
   packet->world_correction = packet->keyframe_world_from_camera * pending_.old_camera_from_world;
   packet->rms_px = solution.report.final_inlier_rms_px;
+  packet->converged = solution.report.converged;
   // What was added since the BA began was placed relative to the keyframe's old pose: it moves with it.
   const Pose correction_inverse = packet->world_correction.inverse();
   for (size_t k = index + 1; k < map.num_keyframes(); ++k)

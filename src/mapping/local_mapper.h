@@ -43,8 +43,9 @@ struct MappingPacket {
   // kAdjusted: how the BA moved that keyframe, refined_world_from_camera * old^-1; the
   // keyframes and points added to the map since the BA began were moved by it too.
   Pose world_correction = Pose::Identity();
-  double rms_px = 0.0;  // kAdjusted: final inlier RMS of the BA
-  double ms = 0.0;      // wall time of this call (the wait for a BA beside tracking included)
+  double rms_px = 0.0;     // kAdjusted: final inlier RMS of the BA
+  bool converged = false;  // kAdjusted: the BA converged (no round stopped at its iteration cap)
+  double ms = 0.0;         // wall time of this call (the wait for a BA beside tracking included)
 };
 
 class LocalMapper {

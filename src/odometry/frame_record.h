@@ -47,6 +47,8 @@ struct FrameRecord {
   int num_matches = 0;
   int num_inliers = 0;
   bool keyframe = false;
+  int local_ba_converged = -1;             // a local BA joined the map: 1 converged, 0 stopped at its
+                                           // iteration cap; -1 none joined in this frame
   std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
   int people = -1;                         // people the detector found (-1: no detector)
   int people_moving = -1;                  // of them, judged moving (people refinement; -1: not judged)

@@ -149,6 +149,7 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.times.pose_ms = tracking.pose_ms;
   record.times.map_ms = tracking.map_ms;
   record.times.local_ba_ms = stages.mapping.ms;
+  if (stages.mapping.status == MappingStatus::kAdjusted) record.local_ba_converged = stages.mapping.converged ? 1 : 0;
   record.times.processing_ms = stages.processing_ms;
   return record;
 }

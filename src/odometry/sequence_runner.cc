@@ -65,6 +65,7 @@ struct RunTally {
   std::map<std::string, std::vector<double>> stages;
   std::map<std::string, int> states;
   int keyframes = 0, mask_computed = 0, mask_failed = 0;
+  int local_ba_adjusted = 0, local_ba_converged = 0;  // BA results that joined the map; of them converged
   // With a detector: frames, person-frames (found, judged moving, judged still), failures and time-outs.
   int detector_frames = 0, detected_frames = 0, frames_with_people = 0, detector_failures = 0, detector_timeouts = 0;
   long long people = 0, people_moving = 0, people_still = 0;
@@ -85,6 +86,8 @@ struct RunTally {
     stages["local_ba_ms"].push_back(t.local_ba_ms);
     states[ToString(r.state)]++;
     keyframes += r.keyframe;
+    local_ba_adjusted += r.local_ba_converged >= 0;
+    local_ba_converged += r.local_ba_converged == 1;
     mask_computed += r.mask_ok;
     mask_failed += !r.mask_ok && !r.mask_note.empty();
     if (r.people >= 0) AddDetector(r);
@@ -147,6 +150,7 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
   report["counts"] = {{"frames", done},
                       {"tracking_states", tally.states},
                       {"keyframes", tally.keyframes},
+                      {"local_ba", {{"adjusted", tally.local_ba_adjusted}, {"converged", tally.local_ba_converged}}},
                       {"masks_computed", tally.mask_computed},
                       {"masks_failed", tally.mask_failed},
                       {"features_removed", tally.features_removed},

@@ -33,7 +33,7 @@ const char* TimingCsvWriter::Header() {
          "dynamic_ratio,mask_threshold,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,"
          "new_points_rejected,coherent_motion_rejected,keyframe,"
          "mask_precision,mask_recall,mask_iou,people,detection_age,people_moving,people_still,detector_ms,"
-         "detector_status";
+         "detector_status,local_ba_converged";
 }
 
 TimingCsvWriter::TimingCsvWriter(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
@@ -64,7 +64,8 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
        << (r.detection_age >= 0 ? std::to_string(r.detection_age) : std::string()) << ','
        << (judged ? std::to_string(r.people_moving) : std::string()) << ','
        << (judged ? std::to_string(r.people - r.people_moving) : std::string()) << ','
-       << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << '\n';
+       << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << ','
+       << (r.local_ba_converged >= 0 ? std::to_string(r.local_ba_converged) : std::string()) << '\n';
   out_.flush();
   if (!out_) ThrowFileError(path_, 0, "write failed");
 }

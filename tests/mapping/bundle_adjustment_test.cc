@@ -86,6 +86,23 @@ void CheckLowersReprojectionErrorOfPerturbedKeyframes(double virtual_baseline_m)
   EXPECT_LT(refined_error, 0.2 * perturbed_error);
 }
 
+// A BA that stopped at its iteration cap says so: the perturbed window of the test above
+// converges within the default 10 iterations, and not within 1.
+TEST(BundleAdjustment, ReportsWhetherItConverged) {
+  for (int max_iterations : {10, 1}) {
+    Scene s;
+    BuildScene(s, 7, 0.5, 3);
+    for (size_t k = 2; k < 7; ++k)
+      s.map.SetKeyframePose(k,
+                            PoseFromAxisAngle({0.01, -0.01, 0.005}, {0.02, 0.01, -0.02}) * s.true_camera_from_world[k]);
+    BundleAdjustmentOptions options;
+    options.max_iterations = max_iterations;
+    const BundleAdjustmentReport report = RunLocalBundleAdjustment(s.map, s.camera, options);
+    ASSERT_TRUE(report.ok) << report.failure;
+    EXPECT_EQ(report.converged, max_iterations == 10) << max_iterations << " iterations, " << report.iterations;
+  }
+}
+
 TEST(BundleAdjustment, LowersReprojectionErrorOfPerturbedKeyframes) {
   CheckLowersReprojectionErrorOfPerturbedKeyframes(0.08);  // with the depth term
   CheckLowersReprojectionErrorOfPerturbedKeyframes(0.0);   // reprojection only

@@ -264,6 +264,27 @@ std::vector<std::string> TimingColumn(const std::string& out_dir, const std::str
   return cells;
 }
 
+// On a generated sequence with depth every local BA is well posed: each one that joined the map
+// converged, and run.json counts them as timing.csv marks them.
+TEST_F(EndToEnd, TimingSaysWhetherEachLocalBaConverged) {
+  const std::string out = Run("baseline.json", "baseline_converged");
+  int adjusted = 0, converged = 0;
+  for (const std::string& cell : TimingColumn(out, "local_ba_converged")) {
+    ASSERT_TRUE(cell.empty() || cell == "0" || cell == "1") << cell;
+    adjusted += !cell.empty();
+    converged += cell == "1";
+  }
+  const nlohmann::json report = nlohmann::json::parse(ReadTextFile(out + "/run.json"));
+  EXPECT_GE(adjusted, 5);
+  EXPECT_EQ(report["counts"]["local_ba"]["adjusted"], adjusted);
+  EXPECT_EQ(report["counts"]["local_ba"]["converged"], converged);
+  EXPECT_EQ(converged, adjusted);
+  // Off: no BA joins the map, the column stays empty.
+  const std::string off = Run("baseline.json", "baseline_ba_off", {"local_ba.enabled=false"});
+  for (const std::string& cell : TimingColumn(off, "local_ba_converged")) EXPECT_EQ(cell, "");
+  EXPECT_EQ(nlohmann::json::parse(ReadTextFile(off + "/run.json"))["counts"]["local_ba"]["adjusted"], 0);
+}
+
 // Two articulated photo people walking 1-3 m from the camera, in view from the first frame (the
 // TUM scenario of the generator), found by the shared Yolo-Fastest body model.
 TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
