@@ -2,7 +2,7 @@
 # Generates the dynamic test sequences that need no download, into one folder, and prints
 # the path of each sequence folder on stdout (one a line, in this order).
 # People as TUM films them (articulated photo people, in view from the first frame), all with
-# Kinect v1 sensor timing (motion blur, depth offset, exposure drift, rolling shutter;
+# Kinect v1 sensor timing (motion blur, depth seen before colour, exposure drift, rolling shutter;
 # dynvo-synth --kinect-sensor):
 #   synth_none_xyz                  dynvo-synth, camera path xyz, no people: the static twin
 #   synth_tum_<scenario>_xyz        dynvo-synth, same camera path, scenarios tum_walking,
@@ -41,7 +41,7 @@ mkdir -p "$out"
 
 synth() {  # name scenario camera_path
   local dir="$out/$1"
-  local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed, rolling shutter 28 ms"
+  local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed, rolling shutter 28 ms, depth 14 ms early"
   if ! { [ -f "$dir/rgb.txt" ] && grep -qxF "$header" "$dir/rgb.txt" &&
          [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ]; }; then
     "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" --seed "$seed" \

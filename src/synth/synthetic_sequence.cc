@@ -103,6 +103,10 @@ RenderResult SyntheticWorld::RenderAt(double seconds) const {
       options_.rolling_shutter_bands);
 }
 
+double SyntheticWorld::DepthSceneTime(int index) const {
+  return DepthStamp(index) - (options_.kinect_timing ? kKinectDepthLeadS : 0.0) - options_.start_stamp;
+}
+
 SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   SyntheticFrame frame;
   frame.rgb_stamp = RgbStamp(index);
@@ -129,8 +133,8 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   const std::uint32_t frame_seed = options_.seed * 2654435761u + static_cast<std::uint32_t>(index) * 40503u;
   cv::Mat depth_m = frame.clean.depth;
   if (options_.kinect_timing) {
-    const double td = frame.depth_stamp - options_.start_stamp;
-    const RenderResult at_depth = RenderAt(td);
+    const double td = DepthSceneTime(index);  // all rows at once: no rolling shutter measured
+    const RenderResult at_depth = renderer_.Render(QuadsAt(td), WorldFromCamera(td).inverse());
     depth_m = at_depth.depth;
     frame.mask |= at_depth.object_id > 0;  // the people's pixels in either image
     const double gain = 1.0 + 0.1 * std::sin(2 * 3.14159265358979323846 * t / 6.1 + options_.seed);
@@ -157,7 +161,10 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
   const long readout_ms = std::lround(options.rolling_shutter_readout_s * 1000.0);
   TumWriter writer(folder, "dynvo synthetic sequence: scenario " + ScenarioName(options.scenario) + ", camera path " +
                                CameraPathPresetName(options.camera_path) + ", seed " + std::to_string(options.seed) +
-                               (readout_ms > 0 ? ", rolling shutter " + std::to_string(readout_ms) + " ms" : ""));
+                               (readout_ms > 0 ? ", rolling shutter " + std::to_string(readout_ms) + " ms" : "") +
+                               (options.kinect_timing
+                                    ? ", depth " + std::to_string(std::lround(kKinectDepthLeadS * 1000)) + " ms early"
+                                    : ""));
   SyntheticSequenceSummary summary;
   double ratio_sum = 0;
   PeopleLabels labels("dynvo-synth");

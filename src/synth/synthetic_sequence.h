@@ -26,6 +26,12 @@ namespace dynvo {
 // or "ros" (the 525 default); 640x480. Throws InputError naming `key` otherwise.
 Camera TumIntrinsics(const std::string& name, const std::string& key);
 
+// How long before its stamp a Kinect v1 depth image shows the scene, relative to the colour
+// image (which shows it at its stamp), seconds. Measured on the real fr1_rpy_head150 against its
+// ground truth: depth images agree best with it 15-20 ms before their stamps, colour images
+// 0-4 ms before theirs (docs/findings.md).
+constexpr double kKinectDepthLeadS = 0.014;
+
 struct SyntheticSequenceOptions {
   Scenario scenario = Scenario::kWalkingAcross;           // moving objects
   CameraPathPreset camera_path = CameraPathPreset::kXyz;  // camera motion
@@ -36,16 +42,18 @@ struct SyntheticSequenceOptions {
   bool motion_blur = false;                               // average sub-frames over the exposure
   int motion_blur_samples = 5;                            // sub-frames per blurred frame (odd, >= 3)
   double exposure_s = 0.02;                               // seconds the shutter is open (motion blur)
-  bool kinect_timing = false;                             // the depth image rendered at its own stamp, a few ms after
-                               // the colour image (Kinect v1), and a slow auto-exposure drift
-                               // of the colour image's brightness (+-10%)
-  double rolling_shutter_readout_s = 0;  // seconds from the first to the last row's exposure, colour and
-                                         // depth alike, in [0, 1/fps) (0 = global shutter; see
-                                         // synth/rolling_shutter.h); dynvo-synth sets 28 ms for tum_*
-  int rolling_shutter_bands = 16;        // horizontal bands rendered at their own time, in [1, camera.height]
-  double start_stamp = 1700000000.0;     // seconds, stamp of the first frame
-  RoomOptions room;                      // the static scene
-  SensorNoiseOptions noise;              // sensor effects
+  // Kinect v1: the depth image stamped a few ms after the colour image but showing the scene
+  // kKinectDepthLeadS before its stamp, all rows at once; and a slow auto-exposure drift of the
+  // colour image's brightness (+-10%).
+  bool kinect_timing = false;
+  // Seconds from the first to the last row's exposure of the colour image (and of the depth
+  // image without kinect_timing), in [0, 1/fps) (0 = global shutter; see synth/rolling_shutter.h);
+  // dynvo-synth sets 28 ms for tum_*.
+  double rolling_shutter_readout_s = 0;
+  int rolling_shutter_bands = 16;     // horizontal bands rendered at their own time, in [1, camera.height]
+  double start_stamp = 1700000000.0;  // seconds, stamp of the first frame
+  RoomOptions room;                   // the static scene
+  SensorNoiseOptions noise;           // sensor effects
 
   SyntheticSequenceOptions();
   // Throws InputError naming the key ("synth.frames must be >= 1, got 0").
@@ -73,6 +81,9 @@ class SyntheticWorld {
   int size() const { return options_.frames; }
   double RgbStamp(int index) const { return rgb_stamps_.at(static_cast<size_t>(index)); }
   double DepthStamp(int index) const { return depth_stamps_.at(static_cast<size_t>(index)); }
+  // When frame `index`'s depth image sees the scene (seconds after start_stamp): its stamp, or
+  // with kinect_timing kKinectDepthLeadS before it.
+  double DepthSceneTime(int index) const;
   // Exact camera pose at `seconds` after start_stamp.
   Pose WorldFromCamera(double seconds) const;
   // Static scene quads followed by the moving people's quads at `seconds`.

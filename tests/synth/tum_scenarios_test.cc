@@ -50,19 +50,23 @@ TEST(TumScenarios, PeopleInViewFromTheFirstFrameWithTheDeclaredCoverage) {
   }
 }
 
-TEST(TumScenarios, DepthIsTakenAtItsOwnStampAndTheMaskCoversBoth) {
+// Kinect v1's depth image is stamped after the colour image but shows the scene before it,
+// every row at once.
+TEST(TumScenarios, DepthShowsTheSceneBeforeItsStampAndTheMaskCoversBoth) {
   const SyntheticWorld world(SmallOptions(Scenario::kTumWalking));
   int frames_where_people_moved = 0, differing = 0, agreeing = 0;
   for (int i = 5; i < 30; i += 5) {
     const SyntheticFrame frame = world.RenderFrame(i);
     ASSERT_GT(world.DepthStamp(i), world.RgbStamp(i));
-    const double td = world.DepthStamp(i) - 1700000000.0;
-    const RenderResult at_depth = world.RenderAt(td);
+    const double td = world.DepthSceneTime(i);
+    EXPECT_NEAR(td, world.DepthStamp(i) - 1700000000.0 - 0.014, 1e-6);  // stamps are whole microseconds
+    EXPECT_LT(td, world.RgbStamp(i) - 1700000000.0);
+    const RenderResult at_depth = world.renderer().Render(world.QuadsAt(td), world.WorldFromCamera(td).inverse());
     const cv::Mat people_at_rgb = frame.clean.object_id > 0, people_at_depth = at_depth.object_id > 0;
     frames_where_people_moved += cv::countNonZero(people_at_rgb != people_at_depth) > 20;
     EXPECT_EQ(cv::countNonZero((people_at_rgb | people_at_depth) & ~frame.mask), 0) << "frame " << i;
-    // The depth image shows the scene at the depth stamp: where the two renders differ by more
-    // than 10 cm, its readings are nearer the depth stamp's render than the colour stamp's.
+    // The depth image shows the scene at that time: where the two renders differ by more than
+    // 10 cm, its readings are nearer that render than the colour stamp's.
     for (int y = 0; y < frame.depth16.rows; ++y)
       for (int x = 0; x < frame.depth16.cols; ++x) {
         const double sensed = frame.depth16.at<std::uint16_t>(y, x) / 5000.0;
@@ -108,7 +112,7 @@ TEST(TumScenarios, RollingShutterBandsAtTheirOwnTimesAndTheMaskCoversEveryRender
   const SyntheticWorld world(o);
   const int i = 45;  // 1.5 s: the yaw (period 6 s) turns at its fastest, 0.26 rad/s
   const SyntheticFrame frame = world.RenderFrame(i);
-  const double t = world.RgbStamp(i) - o.start_stamp, td = world.DepthStamp(i) - o.start_stamp;
+  const double t = world.RgbStamp(i) - o.start_stamp, td = world.DepthSceneTime(i);
   EXPECT_TRUE(frame.world_from_camera.matrix() == world.WorldFromCamera(t).matrix()) << "ground truth at the stamp";
   const std::vector<ShutterBand> bands = RollingShutterBands(o.camera.height, o.rolling_shutter_readout_s, 16);
   int bands_at_their_time = 0;
@@ -122,7 +126,7 @@ TEST(TumScenarios, RollingShutterBandsAtTheirOwnTimesAndTheMaskCoversEveryRender
   EXPECT_EQ(bands_at_their_time, 16);
   const RenderResult global = world.renderer().Render(world.QuadsAt(t), world.WorldFromCamera(t).inverse());
   EXPECT_GT(cv::norm(frame.clean.bgr, global.bgr, cv::NORM_INF), 0) << "the rolling shutter changed nothing";
-  cv::Mat people = world.RenderAt(td).object_id > 0;
+  cv::Mat people = world.renderer().Render(world.QuadsAt(td), world.WorldFromCamera(td).inverse()).object_id > 0;
   for (int k = 0; k < o.motion_blur_samples; ++k) {
     const double ts = t + o.exposure_s * (double(k) / (o.motion_blur_samples - 1) - 0.5);
     people |= world.RenderAt(ts).object_id > 0;
