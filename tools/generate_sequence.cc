@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", scenario,
                  "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
                  "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
-                 "motion blur, depth a few ms after colour, exposure drift, 28 ms rolling shutter)")
+                 "motion blur, depth seen a few ms before colour, exposure drift, 28 ms rolling shutter)")
       ->capture_default_str();
   app.add_option("--camera-path", camera_path, "static|xyz|halfsphere|rpy")->capture_default_str();
   app.add_option("--frames", frames, "number of RGB-D frames")->capture_default_str();
@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "random seed: same seed, same sequence")->capture_default_str();
   app.add_flag("--motion-blur", motion_blur, "blur frames over the exposure (20 ms, at most half a frame)");
   app.add_flag("--kinect-sensor", kinect_sensor,
-               "Kinect v1 sensor timing for any scenario (always on for tum_*): motion blur, depth a few ms "
-               "after colour, exposure drift, 28 ms rolling shutter; the static twin of a tum_* sequence");
+               "Kinect v1 sensor timing for any scenario (always on for tum_*): motion blur, depth seen a few ms "
+               "before colour, exposure drift, 28 ms rolling shutter; the static twin of a tum_* sequence");
   app.add_option("--out", out, "output folder (TUM layout)")->required();
   app.add_flag("--force", force, "replace the generated files of an existing non-empty --out");
   return dynvo::RunToolMain(prog, app, argc, argv, [&] {
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     options.kinect_timing = kinect;
     if (fps > 0)
       options.exposure_s = std::min(options.exposure_s, 0.5 / fps);  // shutter open half the frame time at most
-    // Kinect v1 reads its colour (and IR) rows out over most of the 33 ms frame time at 30 Hz,
+    // Kinect v1 reads its colour rows out over most of the 33 ms frame time at 30 Hz,
     // the rest being vertical blanking; 28 ms is the readout Kerl et al. (ICCV 2015) simulate
     // for their rolling-shutter RGB-D sequences. The same share (84%) of the frame time above 30 Hz.
     if (kinect && fps > 0) options.rolling_shutter_readout_s = std::min(0.028, 0.84 / fps);
