@@ -103,6 +103,10 @@ RenderResult SyntheticWorld::RenderAt(double seconds) const {
       options_.rolling_shutter_bands);
 }
 
+RenderResult SyntheticWorld::RenderGlobalAt(double seconds) const {
+  return renderer_.Render(QuadsAt(seconds), WorldFromCamera(seconds).inverse());
+}
+
 double SyntheticWorld::DepthSceneTime(int index) const {
   return DepthStamp(index) - (options_.kinect_timing ? kKinectDepthLeadS : 0.0) - options_.start_stamp;
 }
@@ -134,7 +138,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   cv::Mat depth_m = frame.clean.depth;
   if (options_.kinect_timing) {
     const double td = DepthSceneTime(index);  // all rows at once: no rolling shutter measured
-    const RenderResult at_depth = renderer_.Render(QuadsAt(td), WorldFromCamera(td).inverse());
+    const RenderResult at_depth = RenderGlobalAt(td);
     depth_m = at_depth.depth;
     frame.mask |= at_depth.object_id > 0;  // the people's pixels in either image
     const double gain = 1.0 + 0.1 * std::sin(2 * 3.14159265358979323846 * t / 6.1 + options_.seed);

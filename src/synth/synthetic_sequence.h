@@ -92,10 +92,11 @@ class SyntheticWorld {
   // Each person's state at `seconds` (object id k + 1 is person k): the box people of the older
   // scenarios always move; the TUM scenarios' people as StagePersonSpeed says.
   std::vector<bool> MovingAt(double seconds) const;
-  const Renderer& renderer() const { return renderer_; }
   // The noise-free image exposed around `seconds` (after start_stamp): WorldFromCamera and
   // QuadsAt rendered at `seconds`, or with a rolling shutter each row at its own time.
   RenderResult RenderAt(double seconds) const;
+  // The same with every row at `seconds` (a global shutter).
+  RenderResult RenderGlobalAt(double seconds) const;
 
   // Frame `index` with sensor effects; the same for the same options.
   SyntheticFrame RenderFrame(int index) const;

@@ -61,7 +61,7 @@ TEST(TumScenarios, DepthShowsTheSceneBeforeItsStampAndTheMaskCoversBoth) {
     const double td = world.DepthSceneTime(i);
     EXPECT_NEAR(td, world.DepthStamp(i) - 1700000000.0 - 0.014, 1e-6);  // stamps are whole microseconds
     EXPECT_LT(td, world.RgbStamp(i) - 1700000000.0);
-    const RenderResult at_depth = world.renderer().Render(world.QuadsAt(td), world.WorldFromCamera(td).inverse());
+    const RenderResult at_depth = world.RenderGlobalAt(td);
     const cv::Mat people_at_rgb = frame.clean.object_id > 0, people_at_depth = at_depth.object_id > 0;
     frames_where_people_moved += cv::countNonZero(people_at_rgb != people_at_depth) > 20;
     EXPECT_EQ(cv::countNonZero((people_at_rgb | people_at_depth) & ~frame.mask), 0) << "frame " << i;
@@ -118,15 +118,15 @@ TEST(TumScenarios, RollingShutterBandsAtTheirOwnTimesAndTheMaskCoversEveryRender
   int bands_at_their_time = 0;
   for (const ShutterBand& band : bands) {
     const double s = t + band.offset_s;
-    const RenderResult global = world.renderer().Render(world.QuadsAt(s), world.WorldFromCamera(s).inverse());
+    const RenderResult global = world.RenderGlobalAt(s);
     const cv::Range rows(band.row_begin, band.row_end);
     bands_at_their_time += cv::norm(frame.clean.bgr.rowRange(rows), global.bgr.rowRange(rows), cv::NORM_INF) == 0 &&
                            cv::norm(frame.clean.depth.rowRange(rows), global.depth.rowRange(rows), cv::NORM_INF) == 0;
   }
   EXPECT_EQ(bands_at_their_time, 16);
-  const RenderResult global = world.renderer().Render(world.QuadsAt(t), world.WorldFromCamera(t).inverse());
+  const RenderResult global = world.RenderGlobalAt(t);
   EXPECT_GT(cv::norm(frame.clean.bgr, global.bgr, cv::NORM_INF), 0) << "the rolling shutter changed nothing";
-  cv::Mat people = world.renderer().Render(world.QuadsAt(td), world.WorldFromCamera(td).inverse()).object_id > 0;
+  cv::Mat people = world.RenderGlobalAt(td).object_id > 0;
   for (int k = 0; k < o.motion_blur_samples; ++k) {
     const double ts = t + o.exposure_s * (double(k) / (o.motion_blur_samples - 1) - 0.5);
     people |= world.RenderAt(ts).object_id > 0;
@@ -142,7 +142,7 @@ TEST(TumScenarios, ZeroReadoutIsTheGlobalShutterFrame) {
   const SyntheticWorld world(o);
   const SyntheticFrame frame = world.RenderFrame(45);
   const double t = world.RgbStamp(45) - o.start_stamp;
-  const RenderResult global = world.renderer().Render(world.QuadsAt(t), world.WorldFromCamera(t).inverse());
+  const RenderResult global = world.RenderGlobalAt(t);
   EXPECT_EQ(cv::norm(frame.clean.bgr, global.bgr, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(frame.clean.depth, global.depth, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(frame.clean.object_id, global.object_id, cv::NORM_INF), 0);
