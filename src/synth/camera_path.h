@@ -12,9 +12,11 @@ enum class CameraPathPreset {
   kXyz,         // translation along each axis, about +-0.2 m, rotation nearly fixed
   kHalfsphere,  // arc of about 1 m radius around a point in front, looking at it
   kRpy,         // rotation about each axis, about +-15 degrees, position nearly fixed
+  kRpyFast,     // hand-held swings like the start of TUM's fr1/rpy: yaw about +-35 degrees at a
+                // median 60 deg/s (peaks near 100), smaller roll and pitch, a few cm of position
 };
 
-// Parses "static", "xyz", "halfsphere", "rpy"; throws InputError naming `key` otherwise.
+// Parses "static", "xyz", "halfsphere", "rpy", "rpy_fast"; throws InputError naming `key` otherwise.
 CameraPathPreset ParseCameraPathPreset(const std::string& name, const std::string& key);
 std::string CameraPathPresetName(CameraPathPreset preset);
 

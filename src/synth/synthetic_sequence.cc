@@ -111,6 +111,21 @@ double SyntheticWorld::DepthSceneTime(int index) const {
   return DepthStamp(index) - (options_.kinect_timing ? kKinectDepthLeadS : 0.0) - options_.start_stamp;
 }
 
+int SyntheticWorld::MotionBlurSamples(double seconds) const {
+  const Pose from = WorldFromCamera(seconds - 0.5 * options_.exposure_s);
+  const Pose to = WorldFromCamera(seconds + 0.5 * options_.exposure_s);
+  const Pose to_from_from = to.inverse() * from;
+  const Camera& c = options_.camera;
+  double smear_px = 0;
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(0, 0), Eigen::Vector2d(c.width - 1, 0),
+                                        Eigen::Vector2d(0, c.height - 1), Eigen::Vector2d(c.width - 1, c.height - 1)}) {
+    const Eigen::Vector3d moved = to_from_from * c.Backproject(corner, 1.0);
+    if (moved.z() > 0.1) smear_px = std::max(smear_px, (c.Project(moved) - corner).norm());
+  }
+  const int steps = std::min(kMaxBlurSamples - 1, static_cast<int>(std::ceil(smear_px / kMaxBlurStepPx)));
+  return std::max(options_.motion_blur_samples, steps + 1 + steps % 2);  // odd: steps even
+}
+
 SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   SyntheticFrame frame;
   frame.rgb_stamp = RgbStamp(index);
@@ -120,7 +135,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   frame.clean = RenderAt(t);
   frame.mask = frame.clean.object_id > 0;
   if (options_.motion_blur) {
-    const int n = options_.motion_blur_samples;
+    const int n = MotionBlurSamples(t);
     cv::Mat sum;
     frame.clean.bgr.convertTo(sum, CV_32FC3);
     for (int k = 0; k < n; ++k) {

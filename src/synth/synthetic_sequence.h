@@ -32,6 +32,11 @@ Camera TumIntrinsics(const std::string& name, const std::string& key);
 // 0-4 ms before theirs (docs/findings.md).
 constexpr double kKinectDepthLeadS = 0.014;
 
+// Largest image step between consecutive sub-frames of a motion-blurred frame, pixels, and the
+// most sub-frames one frame takes (a camera turning 100 deg/s smears about 20 px in 20 ms).
+constexpr double kMaxBlurStepPx = 1.5;
+constexpr int kMaxBlurSamples = 31;
+
 struct SyntheticSequenceOptions {
   Scenario scenario = Scenario::kWalkingAcross;           // moving objects
   CameraPathPreset camera_path = CameraPathPreset::kXyz;  // camera motion
@@ -40,8 +45,10 @@ struct SyntheticSequenceOptions {
   Camera camera;                                          // intrinsics, no distortion (default: TUM fr3, 640x480)
   std::uint32_t seed = 1;                                 // everything random derives from it
   bool motion_blur = false;                               // average sub-frames over the exposure
-  int motion_blur_samples = 5;                            // sub-frames per blurred frame (odd, >= 3)
-  double exposure_s = 0.02;                               // seconds the shutter is open (motion blur)
+  // Sub-frames per blurred frame at least (odd, >= 3); more where the camera moves fast, so that
+  // consecutive sub-frames lie at most kMaxBlurStepPx apart (a smear, not a row of copies).
+  int motion_blur_samples = 5;
+  double exposure_s = 0.02;  // seconds the shutter is open (motion blur)
   // Kinect v1: the depth image stamped a few ms after the colour image but showing the scene
   // kKinectDepthLeadS before its stamp, all rows at once; and a slow auto-exposure drift of the
   // colour image's brightness (+-10%).
@@ -97,6 +104,10 @@ class SyntheticWorld {
   RenderResult RenderAt(double seconds) const;
   // The same with every row at `seconds` (a global shutter).
   RenderResult RenderGlobalAt(double seconds) const;
+  // Sub-frames that blur the exposure around `seconds`: odd, at least motion_blur_samples, and
+  // enough that the image corners (seen at 1 m) move at most kMaxBlurStepPx from one to the next
+  // (at most kMaxBlurSamples).
+  int MotionBlurSamples(double seconds) const;
 
   // Frame `index` with sensor effects; the same for the same options.
   SyntheticFrame RenderFrame(int index) const;

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 #include "synth/camera_path.h"
@@ -87,6 +89,11 @@ TEST(CameraPath, MagnitudesLikeTheTumPresets) {
   EXPECT_LT(offset, 0.05);
   EXPECT_GT(angle, 15 * kDeg);
   EXPECT_LT(angle, 30 * kDeg);
+  range(CameraPathPreset::kRpyFast, &offset, &angle);
+  EXPECT_GT(offset, 0.03);
+  EXPECT_LT(offset, 0.12);
+  EXPECT_GT(angle, 30 * kDeg);
+  EXPECT_LT(angle, 60 * kDeg);
   range(CameraPathPreset::kHalfsphere, &offset, &angle);
   EXPECT_GT(offset, 0.8);
   EXPECT_GT(angle, 40 * kDeg);
@@ -96,6 +103,32 @@ TEST(CameraPath, MagnitudesLikeTheTumPresets) {
   const Eigen::Vector3d centre_p = p.translation() + 1.1 * p.linear().col(2);
   const Eigen::Vector3d centre_q = q.translation() + 1.1 * q.linear().col(2);
   EXPECT_LT((centre_p - centre_q).norm(), 0.05);
+}
+
+// Median and largest rotation rate (deg/s) over 30 s, from poses 1/30 s apart.
+void RotationRates(CameraPathPreset preset, double* median, double* max) {
+  std::vector<double> rates;
+  for (double t = 0; t < 30; t += 1.0 / 30)
+    rates.push_back(RotationAngle(Pose(CameraPathPose(preset, t).inverse() * CameraPathPose(preset, t + 1.0 / 30))) *
+                    30 / kDeg);
+  std::sort(rates.begin(), rates.end());
+  *median = rates[rates.size() / 2];
+  *max = rates.back();
+}
+
+TEST(CameraPath, RpyFastTurnsLikeTheStartOfFr1Rpy) {
+  // fr1/rpy's first 5 s (ground truth): median 60 deg/s, p90 94; the slow rpy stays under 30,
+  // the rate above which local BA leaves a keyframe's depth out.
+  double median, max;
+  RotationRates(CameraPathPreset::kRpyFast, &median, &max);
+  EXPECT_GT(median, 45);
+  EXPECT_LT(median, 80);
+  EXPECT_GT(max, 80);
+  EXPECT_LT(max, 120);
+  RotationRates(CameraPathPreset::kRpy, &median, &max);
+  EXPECT_LT(max, 30);
+  EXPECT_EQ(ParseCameraPathPreset("rpy_fast", "k"), CameraPathPreset::kRpyFast);
+  EXPECT_EQ(CameraPathPresetName(CameraPathPreset::kRpyFast), "rpy_fast");
 }
 
 TEST(MovingObject, PeopleArePersonSizedAndWalkAtTheirSpeed) {

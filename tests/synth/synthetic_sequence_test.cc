@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -135,6 +136,27 @@ TEST(SyntheticSequence, OutputLoadsThroughTheReaderAndGroundtruthMatchesTheRende
     EXPECT_LT((interpolated.translation() - exact.translation()).norm(), 1e-4);  // 10 ms chords of a slow arc
     EXPECT_LT(RotationAngle(Pose(interpolated.inverse() * exact)), 1e-4);
   }
+}
+
+TEST(SyntheticSequence, MotionBlurSmearsFastTurnsWithEnoughSubFrames) {
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kNone);
+  o.camera = TumIntrinsics("fr3", "k");  // 640x480, fx 535
+  o.camera_path = CameraPathPreset::kStatic;
+  EXPECT_EQ(SyntheticWorld(o).MotionBlurSamples(1.0), 5);  // the minimum: nothing moves
+  o.camera_path = CameraPathPreset::kRpyFast;
+  const SyntheticWorld world(o);
+  int most = 0;
+  for (double t = 0; t < 5; t += 0.1) {
+    const int n = world.MotionBlurSamples(t);
+    EXPECT_EQ(n % 2, 1);
+    // The turn over the exposure moves the image centre by about fx * angle; the corners more.
+    const double turn = RotationAngle(
+        Pose(world.WorldFromCamera(t - 0.5 * o.exposure_s).inverse() * world.WorldFromCamera(t + 0.5 * o.exposure_s)));
+    EXPECT_GE(n, std::min(kMaxBlurSamples, static_cast<int>(o.camera.fx * turn / kMaxBlurStepPx) + 1)) << t;
+    most = std::max(most, n);
+  }
+  EXPECT_GE(most, 13);  // about 100 deg/s at the peaks: a 20 px smear
+  EXPECT_LE(most, kMaxBlurSamples);
 }
 
 TEST(SyntheticSequence, ChecksOptionsNamingTheKey) {

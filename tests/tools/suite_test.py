@@ -215,13 +215,15 @@ class WithFakeBinaries(unittest.TestCase):
         ok = [(r["sequence"], r["config"], r["ratio"], r["mask_iou"], r["ms_p90"])
               for r in rows if r["status"] == "ok"]
         scenarios = suite.PRESETS
-        self.assertEqual(ok, [("synth_%s_xyz_s1" % s, c, "2.0", "-" if c == "baseline" else "0.5", "28.0")
-                              for s in scenarios for c in ("baseline", "paper")])
+        paths = ("xyz_s1", "rpy_fast_s4")  # the dev split's synthetic camera paths and scene seeds
+        self.assertEqual(ok, [("synth_%s_%s" % (s, p), c, "2.0", "-" if c == "baseline" else "0.5", "28.0")
+                              for p in paths for s in scenarios for c in ("baseline", "paper")])
         self.assertEqual([r["sequence"] for r in rows if r["status"] == suite.NOT_RUN],
                          ["fr1_rpy_head150_%s_s1" % p for p in suite.PRESETS for _ in range(2)])
-        self.assertEqual(len(self.calls()), len(scenarios) + 1)  # the sequences and their twin
+        generated = len(paths) * (len(scenarios) + 1)  # the sequences and their twins
+        self.assertEqual(len(self.calls()), generated)
         self.assertEqual(self.run_suite().returncode, 0)
-        self.assertEqual(len(self.calls()), len(scenarios) + 1)  # kept: same spec
+        self.assertEqual(len(self.calls()), generated)  # kept: same spec
 
     def test_a_failed_run_names_sequence_config_and_program(self):
         self.fake("dynvo-cli", FAILING)

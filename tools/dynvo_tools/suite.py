@@ -73,6 +73,7 @@ class Source:
 SOURCES = (
     Source("dev",        INSERT, "rgbd_dataset_freiburg1_rpy_head150",       1, DEV_PERSON),
     Source("dev",        SYNTH,  "xyz",                                      1),
+    Source("dev",        SYNTH,  "rpy_fast",                                 4),
     Source("validation", INSERT, "rgbd_dataset_freiburg2_desk_head50",       2, VALIDATION_PERSON),
     Source("validation", SYNTH,  "rpy",                                      2),
     Source("validation", SYNTH,  "halfsphere",                               3),
