@@ -12,8 +12,7 @@
 #   fr1_rpy_head150_tum_<preset>    dynvo-insert-people into the real fr1_rpy_head150, the four
 #                                   TUM presets (only when the project's shared data is present)
 # A sequence already there is kept when it is what would be generated (same scenario, camera
-# path, seed and frame count, read from its rgb.txt, and a camera.json giving the rolling
-# shutter's readout), else it is generated again.
+# path, seed and frame count, read from its rgb.txt), else it is generated again.
 # Used by `python3 -m dynvo_tools table1` and the bench scripts; they build the binaries first.
 #   bash tools/make_sequences.sh --out DIR [--frames 300] [--seed 1]
 #   (env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin; DYNVO_SHARED_DIR, default ../shared)
@@ -44,8 +43,7 @@ synth() {  # name scenario camera_path
   local dir="$out/$1"
   local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed, rolling shutter 28 ms, depth 14 ms early"
   if ! { [ -f "$dir/rgb.txt" ] && grep -qxF "$header" "$dir/rgb.txt" &&
-         [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ] &&
-         grep -q rolling_shutter_readout_s "$dir/camera.json"; }; then
+         [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ]; }; then
     "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" --seed "$seed" \
       --kinect-sensor --out "$dir" --force >&2
   fi
@@ -65,8 +63,7 @@ fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"
 if [ -d "$fr1" ]; then
   for preset in $presets; do
     people="$out/fr1_rpy_head150_$preset"
-    { [ -f "$people/people.txt" ] && grep -q rolling_shutter_readout_s "$people/camera.json"; } ||
-      "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
+    [ -f "$people/people.txt" ] || "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
       --out "$people" --force >&2
     echo "$people"
   done

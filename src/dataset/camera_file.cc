@@ -41,16 +41,14 @@ CameraFile ReadCameraFile(const std::string& path) {
     ThrowFileError(path, 0, std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) ThrowFileError(path, 0, "expected a JSON object");
-  static const char* const kKeys[] = {
-      "width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor", "rolling_shutter_readout_s"};
+  static const char* const kKeys[] = {"width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor"};
   for (const auto& item : root.items()) {
     bool known = false;
     for (const char* key : kKeys) known = known || item.key() == key;
     if (!known)
       ThrowFileError(
           path, 0,
-          "unknown key '" + item.key() +
-              "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor, rolling_shutter_readout_s)");
+          "unknown key '" + item.key() + "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor)");
   }
 
   CameraFile file;
@@ -71,14 +69,6 @@ CameraFile ReadCameraFile(const std::string& path) {
     if (!ok) ThrowFileError(path, 0, "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + d.dump());
   }
   if (root.contains("depth_factor")) file.depth_factor = Number(root, "depth_factor", path, true);
-  if (root.contains("rolling_shutter_readout_s")) {
-    const double readout = Number(root, "rolling_shutter_readout_s", path, false);
-    if (!(readout >= 0.0 && readout < 0.1))
-      ThrowFileError(path, 0,
-                     "key 'rolling_shutter_readout_s' must be in [0, 0.1) seconds, got " +
-                         root.at("rolling_shutter_readout_s").dump());
-    camera.rolling_shutter_readout_s = readout;
-  }
   return file;
 }
 
@@ -89,8 +79,7 @@ void WriteCameraFile(const std::string& path, const Camera& camera, std::optiona
                {"fy", camera.fy},
                {"cx", camera.cx},
                {"cy", camera.cy},
-               {"distortion", camera.distortion},
-               {"rolling_shutter_readout_s", camera.rolling_shutter_readout_s}};
+               {"distortion", camera.distortion}};
   if (depth_factor) root["depth_factor"] = *depth_factor;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) ThrowFileError(path, 0, "cannot write file");

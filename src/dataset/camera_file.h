@@ -1,11 +1,9 @@
 #pragma once
 // camera.json, written by our synthetic sequence generators beside rgb.txt:
 //   {"width":640,"height":480,"fx":..,"fy":..,"cx":..,"cy":..,
-//    "distortion":[k1,k2,p1,p2,k3], "depth_factor":5000, "rolling_shutter_readout_s":0.028}
-// width, height, fx, fy, cx, cy are required; distortion (default zeros), depth_factor
-// (PNG value per metre) and rolling_shutter_readout_s (colour rows read top to bottom over
-// this many seconds, the middle row at the stamp; default 0, a global shutter; in [0, 0.1)) are
-// optional; any other key is an error.
+//    "distortion":[k1,k2,p1,p2,k3], "depth_factor":5000}
+// width, height, fx, fy, cx, cy are required; distortion (default zeros) and depth_factor
+// (PNG value per metre) are optional; any other key is an error.
 
 #include <optional>
 #include <string>

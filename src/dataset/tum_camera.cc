@@ -3,12 +3,7 @@
 namespace dynvo {
 namespace {
 
-// Kinect v1's colour rows are read out top to bottom over about 28 ms: measured on the real
-// fr1_rpy_head150 against its ground truth, 15-28 ms (docs/findings.md).
-constexpr double kKinectReadoutS = 0.028;
-
-Camera MakeCamera(double fx, double fy, double cx, double cy, std::array<double, 5> distortion,
-                  double readout_s = kKinectReadoutS) {
+Camera MakeCamera(double fx, double fy, double cx, double cy, std::array<double, 5> distortion) {
   Camera camera;
   camera.width = 640;
   camera.height = 480;
@@ -17,7 +12,6 @@ Camera MakeCamera(double fx, double fy, double cx, double cy, std::array<double,
   camera.cx = cx;
   camera.cy = cy;
   camera.distortion = distortion;
-  camera.rolling_shutter_readout_s = readout_s;
   return camera;
 }
 
@@ -30,7 +24,7 @@ Camera TumCameraForSequence(const std::string& folder_name, bool* recognised) {
   if (has("freiburg2")) return MakeCamera(520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.0001, 0.9172});
   if (has("freiburg3")) return MakeCamera(535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0});
   if (recognised) *recognised = false;
-  return MakeCamera(525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0}, 0.0);  // nothing known: a global shutter
+  return MakeCamera(525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0});
 }
 
 double TumDepthFactorForSequence(const std::string& folder_name) {

@@ -98,9 +98,6 @@ void BindCameraKeys(CameraConfig* c, ConfigRegistry* r) {
   for (int i = 0; i < 5; ++i)
     r->Bind(std::string("camera.") + names[i], &c->custom.distortion[i],
             "distortion coefficient (OpenCV order, source \"custom\")");
-  r->Bind("camera.rolling_shutter_readout_s", &c->custom.rolling_shutter_readout_s,
-          "seconds over which the colour rows are read out top to bottom (source \"custom\"; Kinect v1 "
-          "0.028; 0 = global shutter): tracking moves features to the camera at the stamp");
 }
 
 // Keys of earlier versions: where they went, or why they are gone.

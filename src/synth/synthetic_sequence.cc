@@ -18,14 +18,10 @@
 namespace dynvo {
 
 Camera TumIntrinsics(const std::string& name, const std::string& key) {
-  static const char* const kFolders[][2] = {
-      {"fr1", "freiburg1"}, {"fr2", "freiburg2"}, {"fr3", "freiburg3"}, {"ros", ""}};
-  for (const auto& [short_name, folder] : kFolders) {
-    if (name != short_name) continue;
-    Camera camera = TumCameraForSequence(folder);
-    camera.rolling_shutter_readout_s = 0.0;  // the generator's own rolling_shutter_readout_s applies
-    return camera;
-  }
+  if (name == "fr1") return TumCameraForSequence("freiburg1");
+  if (name == "fr2") return TumCameraForSequence("freiburg2");
+  if (name == "fr3") return TumCameraForSequence("freiburg3");
+  if (name == "ros") return TumCameraForSequence("");
   throw InputError(key + " must be one of fr1, fr2, fr3, ros, got '" + name + "'");
 }
 
@@ -208,9 +204,7 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
     });
   }
   if (pending.valid()) pending.Get();
-  Camera written = options.camera;  // camera.json tells readers the readout the frames have
-  written.rolling_shutter_readout_s = options.rolling_shutter_readout_s;
-  writer.Finish(world.Groundtruth(), written, options.noise.depth_factor);
+  writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
   labels.Write(folder);
   summary.frames = world.size();
   summary.mean_dynamic_ratio = ratio_sum / world.size();

@@ -23,8 +23,7 @@
 namespace dynvo {
 
 // TUM's published pinhole intrinsics: "fr1", "fr2", "fr3" (with distortion for fr1/fr2),
-// or "ros" (the 525 default); 640x480, readout 0 (rolling_shutter_readout_s below gives the
-// generated frames theirs). Throws InputError naming `key` otherwise.
+// or "ros" (the 525 default); 640x480. Throws InputError naming `key` otherwise.
 Camera TumIntrinsics(const std::string& name, const std::string& key);
 
 // How long before its stamp a Kinect v1 depth image shows the scene, relative to the colour

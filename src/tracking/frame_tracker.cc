@@ -12,7 +12,6 @@
 #include "core/stopwatch.h"
 #include "features/feature_filter.h"
 #include "tracking/new_point_confirmation.h"
-#include "tracking/rolling_shutter_unroll.h"
 #include "tracking/static_verification.h"
 
 namespace dynvo {
@@ -121,20 +120,9 @@ void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, co
   result.map_ms = MillisecondsSince(start);
 }
 
-const FrameFeatures& FrameTracker::AtStamp(const FrameFeatures& observed, FrameFeatures& storage) const {
-  const Eigen::Vector3d turn = motion_.AngularVelocity();
-  if (camera_.rolling_shutter_readout_s <= 0.0 || turn.isZero()) return observed;
-  storage = observed;
-  UnrollRollingShutter(camera_, turn, camera_.rolling_shutter_readout_s, &storage);
-  return storage;
-}
-
-TrackingResult FrameTracker::Track(const FrameFeatures& observed, double stamp, const FrameFeatures* observed_masked) {
-  CheckFeatures(observed);
-  if (observed_masked != nullptr) CheckFeatures(*observed_masked);
-  FrameFeatures unrolled, unrolled_masked;
-  const FrameFeatures& features = AtStamp(observed, unrolled);
-  const FrameFeatures* masked = observed_masked == nullptr ? nullptr : &AtStamp(*observed_masked, unrolled_masked);
+TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked) {
+  CheckFeatures(features);
+  if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
   if (!initialized_) return Initialise(features, stamp);
 

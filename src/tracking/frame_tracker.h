@@ -99,9 +99,8 @@ class FrameTracker {
   // the identity (state kInitializing, with a note); that frame's camera is the world frame.
   // `masked` (optional) are the features the dynamic mask removed: with readmit_masked_px > 0,
   // those that match the map at the pose from `features` within that error rejoin the final
-  // pose refinement and the keyframe; the others are never used. Both are first moved to the
-  // camera at `stamp` (the camera's rolling_shutter_readout_s); `feature_inliers` and `readmitted` index
-  // them in the order given. Throws InputError when the feature arrays disagree in size.
+  // pose refinement and the keyframe; the others are never used. Throws InputError when the
+  // feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr);
 
   // The local map as of the last Track (and the mapper's work on it since).
@@ -117,10 +116,6 @@ class FrameTracker {
   const TrackerOptions& options() const { return options_; }
 
  private:
-  // `observed` as the camera at the frame's stamp would have seen them (UnrollRollingShutter
-  // with the motion model's turn, into `storage`), or `observed` itself when there is no
-  // readout or no turn yet.
-  const FrameFeatures& AtStamp(const FrameFeatures& observed, FrameFeatures& storage) const;
   // The first frames: the identity until a frame has enough depth features to seed the map.
   TrackingResult Initialise(const FrameFeatures& features, double stamp);
   // A frame whose pose was estimated: its inliers seen, and a keyframe when the policy says so.

@@ -45,12 +45,6 @@ double ConstantVelocityModel::AngularSpeedTo(const Pose& world_from_camera, doub
   return std::abs(rotation.angle()) / (stamp - last_stamp_);
 }
 
-Eigen::Vector3d ConstantVelocityModel::AngularVelocity() const {
-  if (num_poses_ < 2 || !(last_gap_ > 0.0)) return Eigen::Vector3d::Zero();
-  const Eigen::AngleAxisd rotation(previous_from_last_.linear());
-  return rotation.axis() * rotation.angle() / last_gap_;
-}
-
 void ConstantVelocityModel::Reset() { *this = ConstantVelocityModel(); }
 
 }  // namespace dynvo

@@ -27,11 +27,6 @@ class ConstantVelocityModel {
   // before any pose or when the stamp does not increase.
   double AngularSpeedTo(const Pose& world_from_camera, double stamp) const;
 
-  // The turn of the last inter-frame motion (rad/s, axis times speed, in the camera's frame: a
-  // point seen later is turned by exp(t * w) into the earlier camera); zero until two poses
-  // with increasing stamps were recorded.
-  Eigen::Vector3d AngularVelocity() const;
-
   // Forgets everything: the next prediction is the identity.
   void Reset();
 

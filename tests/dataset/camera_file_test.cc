@@ -26,7 +26,7 @@ TEST(CameraFile, ReadsAllKeys) {
   test::TempDir dir;
   const std::string path = dir.Write("camera.json",
                                      R"({"width": 320, "height": 240, "fx": 300.5, "fy": 301, "cx": 160.25, "cy": 120,
-          "distortion": [0.1, -0.2, 0.001, -0.002, 0.05], "depth_factor": 1000, "rolling_shutter_readout_s": 0.021})");
+          "distortion": [0.1, -0.2, 0.001, -0.002, 0.05], "depth_factor": 1000})");
   const CameraFile file = ReadCameraFile(path);
   EXPECT_EQ(file.camera.width, 320);
   EXPECT_EQ(file.camera.height, 240);
@@ -37,7 +37,6 @@ TEST(CameraFile, ReadsAllKeys) {
   EXPECT_EQ(file.camera.distortion, (std::array<double, 5>{0.1, -0.2, 0.001, -0.002, 0.05}));
   ASSERT_TRUE(file.depth_factor.has_value());
   EXPECT_EQ(*file.depth_factor, 1000.0);
-  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.021);
 }
 
 TEST(CameraFile, OptionalKeysDefault) {
@@ -47,7 +46,6 @@ TEST(CameraFile, OptionalKeysDefault) {
   const CameraFile file = ReadCameraFile(path);
   EXPECT_FALSE(file.camera.HasDistortion());
   EXPECT_FALSE(file.depth_factor.has_value());
-  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.0);  // a global shutter
 }
 
 TEST(CameraFile, WriteReadRoundTrip) {
@@ -58,7 +56,6 @@ TEST(CameraFile, WriteReadRoundTrip) {
   camera.fx = 123.456789012345;
   camera.cy = 60.0000001;
   camera.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
-  camera.rolling_shutter_readout_s = 0.028;
   const std::string path = (dir.path() / "camera.json").string();
   WriteCameraFile(path, camera, 5000.0);
   const CameraFile file = ReadCameraFile(path);
@@ -67,7 +64,6 @@ TEST(CameraFile, WriteReadRoundTrip) {
   EXPECT_EQ(file.camera.fx, camera.fx);  // nlohmann-json writes doubles round-trip exact
   EXPECT_EQ(file.camera.cy, camera.cy);
   EXPECT_EQ(file.camera.distortion, camera.distortion);
-  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.028);
   EXPECT_EQ(file.depth_factor, std::optional<double>(5000.0));
   WriteCameraFile(path, camera);
   EXPECT_FALSE(ReadCameraFile(path).depth_factor.has_value());
@@ -86,11 +82,6 @@ TEST(CameraFile, ErrorsNameFileAndKey) {
             std::string::npos);
   EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"depth_factor":0})").find("key 'depth_factor'"),
             std::string::npos);
-  for (const char* readout : {"-0.001", "0.1", "\"0.028\""})
-    EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"rolling_shutter_readout_s":)" + readout + "}")
-                  .find("key 'rolling_shutter_readout_s'"),
-              std::string::npos)
-        << readout;
   EXPECT_NE(CameraFileError("{" + base).find("not valid JSON"), std::string::npos);
   EXPECT_NE(CameraFileError("[1, 2]").find("expected a JSON object"), std::string::npos);
   EXPECT_EQ(CameraFileError("{" + base + R"(,"cy":240})"), "");

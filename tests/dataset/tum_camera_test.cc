@@ -16,7 +16,6 @@ TEST(TumCamera, Freiburg1FromTheTumSite) {
   EXPECT_EQ(c.cx, 318.6);
   EXPECT_EQ(c.cy, 255.3);
   EXPECT_EQ(c.distortion, (std::array<double, 5>{0.2624, -0.9531, -0.0054, 0.0026, 1.1633}));
-  EXPECT_EQ(c.rolling_shutter_readout_s, 0.028);  // Kinect v1's colour readout
 }
 
 TEST(TumCamera, Freiburg2And3) {
@@ -36,8 +35,6 @@ TEST(TumCamera, Freiburg2And3) {
   EXPECT_EQ(fr3.cx, 320.1);
   EXPECT_EQ(fr3.cy, 247.6);
   EXPECT_FALSE(fr3.HasDistortion());
-  EXPECT_EQ(fr2.rolling_shutter_readout_s, 0.028);
-  EXPECT_EQ(fr3.rolling_shutter_readout_s, 0.028);
 }
 
 TEST(TumCamera, DepthFactorIsFreiburg2sCorrectionElseTheStandard) {
@@ -56,7 +53,6 @@ TEST(TumCamera, UnknownNameGivesRosDefault) {
   EXPECT_EQ(c.cx, 319.5);
   EXPECT_EQ(c.cy, 239.5);
   EXPECT_FALSE(c.HasDistortion());
-  EXPECT_EQ(c.rolling_shutter_readout_s, 0.0);            // nothing known: no rolling shutter assumed
   EXPECT_EQ(TumCameraForSequence("freiburg").fx, 525.0);  // no number: not recognised
   EXPECT_EQ(TumCameraForSequence("fr1_rpy").fx, 525.0);   // short names are not TUM's
 }

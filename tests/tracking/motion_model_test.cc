@@ -59,18 +59,6 @@ TEST(ConstantVelocityModel, AngularSpeedToANewPose) {
   EXPECT_EQ(model.AngularSpeedTo(turned, 1.0), 0.0);  // stamp does not increase
 }
 
-TEST(ConstantVelocityModel, AngularVelocityOfTheLastMotion) {
-  ConstantVelocityModel model;
-  const Pose a = PoseFromAxisAngle({0.1, 0.0, 0.2}, {1, 2, 3});
-  model.Update(a, 1.0);
-  EXPECT_TRUE(model.AngularVelocity().isZero());  // one pose: no motion yet
-  // 0.04 rad about the camera's (0.6, 0, 0.8) in 0.02 s: 2 rad/s about that axis.
-  model.Update(a * PoseFromAxisAngle(Eigen::Vector3d(0.6, 0.0, 0.8) * 0.04, {0.3, 0, 0}), 1.02);
-  EXPECT_TRUE(model.AngularVelocity().isApprox(Eigen::Vector3d(1.2, 0.0, 1.6), 1e-9));
-  model.Update(a, 1.02);  // a stamp that does not increase: no speed can be told
-  EXPECT_TRUE(model.AngularVelocity().isZero());
-}
-
 TEST(ConstantVelocityModel, CorrectMovesBothPosesAndKeepsTheMotion) {
   ConstantVelocityModel model;
   const Pose a = PoseFromAxisAngle({0.1, 0.0, 0.2}, {1, 2, 3});

@@ -1,7 +1,5 @@
 #include "synthetic_world.h"
 
-#include <functional>
-
 namespace dynvo::test {
 
 SyntheticWorld MakeWorld(int num_points, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, unsigned seed) {
@@ -32,17 +30,15 @@ FrameFeatures Allocate(size_t n) {
 
 }  // namespace
 
-// The features of the world points `seen` puts in front of the camera (their camera coordinates).
-FrameFeatures RenderSeen(const SyntheticWorld& world,
-                         const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& seen,
-                         const RenderOptions& options, std::mt19937& rng) {
+FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world, const RenderOptions& options,
+                     std::mt19937& rng) {
   std::normal_distribution<double> noise(0.0, options.pixel_noise);
   std::uniform_int_distribution<int> bit(0, 255);
   std::vector<int> visible;
   std::vector<Eigen::Vector2d> pixels;
   std::vector<double> depths;
   for (size_t i = 0; i < world.points.size() && static_cast<int>(visible.size()) < options.max_features; ++i) {
-    const Eigen::Vector3d p = seen(world.points[i]);
+    const Eigen::Vector3d p = camera_from_world * world.points[i];
     if (p.z() < 0.2) continue;
     Eigen::Vector2d px = world.camera.Project(p);
     if (options.pixel_noise > 0) px += Eigen::Vector2d(noise(rng), noise(rng));
@@ -68,24 +64,6 @@ FrameFeatures RenderSeen(const SyntheticWorld& world,
                                                : Eigen::Vector3d::Zero());
   }
   return f;
-}
-
-FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world, const RenderOptions& options,
-                     std::mt19937& rng) {
-  return RenderSeen(
-      world, [&](const Eigen::Vector3d& point) -> Eigen::Vector3d { return camera_from_world * point; }, options, rng);
-}
-
-FrameFeatures RenderRollingShutter(const SyntheticWorld& world, const std::function<Pose(double)>& camera_from_world_at,
-                                   double readout_s, const RenderOptions& options, std::mt19937& rng) {
-  const Camera& camera = world.camera;
-  const auto seen = [&](const Eigen::Vector3d& point) -> Eigen::Vector3d {
-    Eigen::Vector3d p = camera_from_world_at(0.0) * point;
-    for (int k = 0; k < 10 && p.z() > 0.2; ++k)  // the row's time moves the row far less than itself
-      p = camera_from_world_at(readout_s * (camera.Project(p).y() / (camera.height - 1) - 0.5)) * point;
-    return p;
-  };
-  return RenderSeen(world, seen, options, rng);
 }
 
 FrameFeatures RandomFeatures(const Camera& camera, int count, std::mt19937& rng) {

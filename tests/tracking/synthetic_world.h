@@ -3,7 +3,6 @@
 // descriptor and orientation, seen along a known camera path as FrameFeatures (projection +
 // pixel noise, a few descriptor bits flipped per observation, exact depth).
 
-#include <functional>
 #include <random>
 #include <vector>
 
@@ -36,12 +35,6 @@ struct RenderOptions {
 // The features of the world seen from `camera_from_world` (points in front and in the image).
 FrameFeatures Render(const SyntheticWorld& world, const Pose& camera_from_world, const RenderOptions& options,
                      std::mt19937& rng);
-
-// The same seen by a rolling-shutter camera: rows exposed top to bottom over `readout_s`, the
-// middle row at the stamp; each point where the camera of its row's time, camera_from_world_at
-// (seconds after the stamp), sees it, with that camera's depth.
-FrameFeatures RenderRollingShutter(const SyntheticWorld& world, const std::function<Pose(double)>& camera_from_world_at,
-                                   double readout_s, const RenderOptions& options, std::mt19937& rng);
 
 // Features that match nothing: `count` random pixels with random descriptors and depth 3 m.
 FrameFeatures RandomFeatures(const Camera& camera, int count, std::mt19937& rng);

@@ -51,9 +51,6 @@ SPLITS = ("dev", "validation")
 INSERT, SYNTH = "inserted", "synthetic"
 VALIDATION_NOTE = "Validation split: reported only, never used to choose a parameter or default."
 NOT_RUN = "not run: shared data absent"
-# Raised when the generators write something else for the same command (2: camera.json gives
-# the rolling shutter's readout), so that sequences made before are made again.
-GENERATED_FORMAT = 2
 METRICS = (RPE_PER_SECOND, ATE)
 
 
@@ -93,7 +90,7 @@ class Sequence:
 
     def spec(self) -> dict:
         """What spec.json beside the generated sequence holds: a change means generate again."""
-        return {"command": list(self.command), "generated_format": GENERATED_FORMAT}
+        return {"command": list(self.command)}
 
 
 @dataclass(frozen=True)
