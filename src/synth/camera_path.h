@@ -13,7 +13,7 @@ enum class CameraPathPreset {
   kHalfsphere,  // arc of about 1 m radius around a point in front, looking at it
   kRpy,         // rotation about each axis, about +-15 degrees, position nearly fixed
   kRpyFast,     // hand-held swings like the start of TUM's fr1/rpy: yaw about +-35 degrees at a
-                // median 60 deg/s (peaks near 100), smaller roll and pitch, a few cm of position
+                // median 60-70 deg/s (peaks near 90), smaller roll and pitch, a few cm of position
 };
 
 // Parses "static", "xyz", "halfsphere", "rpy", "rpy_fast"; throws InputError naming `key` otherwise.
