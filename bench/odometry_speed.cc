@@ -7,9 +7,13 @@
 // (and the intrinsics with them) to measure how the cost grows with resolution; --set
 // overrides config keys (e.g. features.num_features) to measure it against other parameters.
 //
+// --rate feeds dynvo the frames at a live camera's rate instead of back to back, and times each
+// frame from its arrival: the latency a robot feels, with the work that runs beside tracking
+// (the next frame's features and mask, the local BA, the detector) done in the time between frames.
+//
 //   odometry_speed --dataset DIR [--config configs/paper.json] [--runs 3] [--frames N]
-//                  [--scale 1] [--no-peers] [--set key=value]... [--trajectories-out DIR]
-//                  [--json FILE]
+//                  [--scale 1] [--rate HZ] [--no-peers] [--set key=value]...
+//                  [--trajectories-out DIR] [--json FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +23,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -129,7 +134,7 @@ struct SpeedArgs {
   std::string dataset_dir, config_path, trajectories_out, json_out;
   std::vector<std::string> overrides;
   int runs = 3, max_frames = 0, threads = dynvo::Executor::DefaultThreads();
-  double scale = 1.0;
+  double scale = 1.0, rate = 0.0;
   bool no_peers = false;
 };
 
@@ -142,13 +147,29 @@ struct DynvoRun {
   int lost_frames = 0;
 };
 
+// When frame `index` of a camera at `rate` frames per second that began at `start` arrives.
+Clock::time_point Arrival(Clock::time_point start, size_t index, double rate) {
+  return start +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(index) / rate));
+}
+
+// With `rate` > 0 the frames arrive as from a live camera at that many frames per second: frame
+// t is processed once frame t+1 has arrived (the look-ahead the triplet needs), or at once when
+// the previous frame ran late, and its time is from then to its pose (waiting included). With
+// `rate` 0 the frames follow each other at once and the time is the call's processing time.
 DynvoRun RunDynvo(const std::vector<dynvo::RgbdFrame>& frames, const dynvo::Camera& camera,
-                  const dynvo::OdometryConfig& config, const dynvo::ImageArea& area, dynvo::Executor* executor) {
+                  const dynvo::OdometryConfig& config, const dynvo::ImageArea& area, double rate,
+                  dynvo::Executor* executor) {
   dynvo::OdometryPipeline pipeline(camera, config, area, executor);
   DynvoRun run;
+  const Clock::time_point start = Clock::now();
   for (size_t i = 0; i < frames.size(); ++i) {
-    const dynvo::FrameRecord rec = pipeline.Process(frames[i], i + 1 < frames.size() ? &frames[i + 1] : nullptr).record;
-    run.times.push_back(rec.times.processing_ms);
+    const bool has_next = i + 1 < frames.size();
+    const Clock::time_point ready = rate > 0 ? Arrival(start, has_next ? i + 1 : i, rate) : start;
+    if (rate > 0) std::this_thread::sleep_until(ready);
+    const dynvo::FrameRecord rec = pipeline.Process(frames[i], has_next ? &frames[i + 1] : nullptr).record;
+    run.times.push_back(rate > 0 ? std::chrono::duration<double, std::milli>(Clock::now() - ready).count()
+                                 : rec.times.processing_ms);
     run.trajectory.push_back({rec.stamp, rec.world_from_camera});
     run.stages["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
     run.stages["features"].push_back(rec.times.features_ms);
@@ -171,7 +192,8 @@ void ReportMethods(const std::vector<MethodResult>& results, const MethodResult&
                    nlohmann::json* report) {
   // Ratio to RgbdOdometry: median over runs of the run's ratio (0 = not measured).
   const double reference = args.no_peers ? 0.0 : Median(rgbd.run_medians);
-  std::printf("%-22s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms", "ratio_to_rgbd_odo");
+  std::printf("%-22s %10s %10s %10s %10s %18s\n", "method", "median_ms", "mean_ms", "p90_ms", "max_ms",
+              "ratio_to_rgbd_odo");
   for (const MethodResult& m : results) {
     std::vector<double> sorted = m.last_run;
     std::sort(sorted.begin(), sorted.end());
@@ -181,10 +203,14 @@ void ReportMethods(const std::vector<MethodResult>& results, const MethodResult&
     for (size_t r = 0; r < rgbd.run_medians.size() && r < m.run_medians.size(); ++r)
       ratios.push_back(m.run_medians[r] / rgbd.run_medians[r]);
     const double ratio = reference > 0 ? Median(ratios) : 0.0;
-    std::printf("%-22s %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90,
+    const double max = sorted.empty() ? 0 : sorted.back();
+    std::printf("%-22s %10.2f %10.2f %10.2f %10.2f %18s\n", m.name.c_str(), median, Mean(m.last_run), p90, max,
                 reference > 0 ? cv::format("%.2f", ratio).c_str() : "-");
-    (*report)["methods"][m.name] = {
-        {"median_ms", median}, {"mean_ms", Mean(m.last_run)}, {"p90_ms", p90}, {"run_medians_ms", m.run_medians}};
+    (*report)["methods"][m.name] = {{"median_ms", median},
+                                    {"mean_ms", Mean(m.last_run)},
+                                    {"p90_ms", p90},
+                                    {"max_ms", max},
+                                    {"run_medians_ms", m.run_medians}};
     if (reference > 0) {
       (*report)["methods"][m.name]["ratio_to_rgbd_odometry"] = ratio;
       (*report)["methods"][m.name]["run_ratios_to_rgbd_odometry"] = ratios;
@@ -241,19 +267,25 @@ int MeasureSpeed(const SpeedArgs& args) {
   dynvo::Executor executor(args.threads - 1);  // the calling thread is the other one, as in dynvo-cli run
   DynvoRun last;
   for (int r = 0; r < args.runs; ++r) {
-    last = RunDynvo(frames, camera, config, area, &executor);
+    last = RunDynvo(frames, camera, config, area, args.rate, &executor);
     AppendRun(&ours, MethodResult{"dynvo", {Median(last.times)}, last.times, last.trajectory});
     if (args.no_peers) continue;
     AppendRun(&rgbd, RunPeer(rgbd.name, rgbd_odometry, frames, 1));
     AppendRun(&icp, RunPeer(icp.name, icp_odometry, frames, 1));
   }
-  nlohmann::json report = {
-      {"dataset", dataset.name()},   {"frames", frames.size()},
-      {"runs", args.runs},           {"config", args.config_path.empty() ? "defaults" : args.config_path},
-      {"overrides", args.overrides}, {"threads", args.threads},
-      {"scale", args.scale},         {"width", camera.width},
-      {"height", camera.height},     {"features", {{"num_features", config.features.num_features}}}};
-  std::printf("per-frame processing time, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
+  nlohmann::json report = {{"dataset", dataset.name()},
+                           {"frames", frames.size()},
+                           {"runs", args.runs},
+                           {"config", args.config_path.empty() ? "defaults" : args.config_path},
+                           {"overrides", args.overrides},
+                           {"threads", args.threads},
+                           {"scale", args.scale},
+                           {"rate", args.rate},
+                           {"width", camera.width},
+                           {"height", camera.height},
+                           {"features", {{"num_features", config.features.num_features}}}};
+  std::printf("per-frame %s, %zu frames of %s at %dx%d, median over frames, median of %d runs\n",
+              args.rate > 0 ? cv::format("time from arrival at %g frames/s", args.rate).c_str() : "processing time",
               frames.size(), dataset.name().c_str(), camera.width, camera.height, args.runs);
   std::vector<MethodResult> results = {ours};
   if (!args.no_peers) results.insert(results.end(), {rgbd, icp});
@@ -279,6 +311,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.1, 4.0));
   app.add_option("--threads", args.threads, "threads dynvo uses (default: the machine's cores, as dynvo-cli run)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--rate", args.rate,
+                 "feed dynvo the frames as a live camera at this many frames per second and time each "
+                 "frame from its arrival (0 = back to back, the call's time)")
+      ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--no-peers", args.no_peers, "time dynvo only, not the OpenCV odometries");
   app.add_option("--trajectories-out", args.trajectories_out, "write each method's trajectory here");
   app.add_option("--json", args.json_out, "write the figures as JSON to this file");

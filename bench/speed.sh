@@ -4,7 +4,8 @@
 # look-ahead) against OpenCV's
 # RgbdOdometry and ICPOdometry on the same in-memory frames, in the same process
 # (bench/odometry_speed.cc): median over frames, median of RUNS runs, ratio to RgbdOdometry (per run, interleaved),
-# and the per-stage split. Sequences: fr1_rpy_head150 from ../shared when present, and a
+# and the per-stage split; then the latency of baseline, paper and dynvo fed at a live camera's
+# 30 frames/s (`--rate 30`: each frame timed from its arrival). Sequences: fr1_rpy_head150 from ../shared when present, and a
 # generated dynamic sequence. Writes bench/results/speed.md and speed.csv (`python3 -m dynvo_tools speed-table`).
 #   bash bench/speed.sh          (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR, RUNS=5)
 set -euo pipefail
@@ -43,6 +44,13 @@ for seq in "${sequences[@]}"; do
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" \
       ${detector[@]+"${detector[@]}"} --json "$work/$(basename "$seq")_$mode.json" >&2
   done
+  # As a live 30 Hz camera would feed them: each frame timed from its arrival (waits included).
+  for mode in baseline paper; do
+    "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" --rate 30 --no-peers \
+      --json "$work/$(basename "$seq")_${mode}_live.json" >&2
+  done
+  "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/dynvo.json" --runs "$runs" --rate 30 --no-peers \
+    ${detector[@]+"${detector[@]}"} --json "$work/$(basename "$seq")_dynvo_live.json" >&2
   # Paper mode and configs/dynvo.json on one thread: each frame's stages in turn, in its own
   # call (the same results).
   "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/paper.json" --runs "$runs" \

@@ -327,7 +327,8 @@ void BindConfigKeys(const std::string& prefix, BundleAdjustmentOptions* o, Confi
   r->Bind(prefix + ".virtual_baseline_m", &o->virtual_baseline_m,
           "stereo baseline that weighs the depth residual of an observation (0 = reprojection only)");
   r->Bind(prefix + ".merge_delay_frames", &o->merge_delay_frames,
-          "frames a keyframe's BA runs beside tracking before it joins the map (0 = before the next frame)");
+          "frames a keyframe's BA runs beside tracking before it joins the map (sooner at the next keyframe; 0 = "
+          "solved before the next frame, which then waits for it)");
 }
 
 }  // namespace dynvo

@@ -29,8 +29,9 @@ struct BundleAdjustmentOptions {
   // Frames the BA of a keyframe runs beside tracking, on the executor, before its result joins
   // the map (sooner at the next keyframe); 0 = solved before the next frame is tracked. The
   // keyframe's own output pose is then the tracked one, and the frame the BA joins is moved
-  // with it. Results never depend on timing (>= 0).
-  int merge_delay_frames = 0;
+  // with it. Results never depend on timing (>= 0). Two frames hide a keyframe's BA (about 30
+  // ms on fr1_rpy_head150) behind the frames of a 30 Hz camera.
+  int merge_delay_frames = 2;
   // Throws InputError naming the key ("local_ba.window_keyframes ...") when out of range.
   void Check() const;
 };

@@ -13,19 +13,27 @@ using test::BuildScene;
 using test::Scene;
 using test::TranslationError;
 
+// Local BA options whose results join the map `frames` after the BA began (0 = at once).
+BundleAdjustmentOptions MergedAfter(int frames) {
+  BundleAdjustmentOptions options;
+  options.merge_delay_frames = frames;
+  return options;
+}
+
 TEST(LocalMapper, RejectsInvalidOptions) {
   BundleAdjustmentOptions options;
   options.window_keyframes = 0;
   EXPECT_THROW(LocalMapper(Camera{}, options), InputError);
 }
 
-// The newest keyframe, 3 cm off its true pose, comes back to it; the mapper hands its pose on.
+// Solved inline (merge_delay_frames 0): the newest keyframe, 3 cm off its true pose, comes back
+// to it; the mapper hands its pose on.
 TEST(LocalMapper, AdjustsTheNewestKeyframeOfATrackedFrame) {
   Scene s;
   BuildScene(s, 5, 0.0, 4);
   const size_t newest = s.map.num_keyframes() - 1;
   s.map.SetKeyframePose(newest, PoseFromAxisAngle({0, 0, 0}, {0.03, 0, 0}) * s.true_camera_from_world[newest]);
-  LocalMapper mapper(s.camera, {});
+  LocalMapper mapper(s.camera, MergedAfter(0));
   const MappingPacket packet = mapper.Process(42, true, s.map);
   ASSERT_EQ(packet.status, MappingStatus::kAdjusted) << packet.failure;
   EXPECT_EQ(packet.frame, 42u);
@@ -56,13 +64,11 @@ TEST(LocalMapper, MergesABaBesideTrackingAFixedNumberOfFramesLater) {
   const Pose off = PoseFromAxisAngle({0, 0, 0}, {0.03, 0, 0}) * inline_scene.true_camera_from_world[4];
   inline_scene.map.SetKeyframePose(4, off);
   beside_scene.map.SetKeyframePose(4, off);
-  const MappingPacket at_once = LocalMapper(inline_scene.camera, {}).Process(10, true, inline_scene.map);
+  const MappingPacket at_once = LocalMapper(inline_scene.camera, MergedAfter(0)).Process(10, true, inline_scene.map);
   ASSERT_EQ(at_once.status, MappingStatus::kAdjusted) << at_once.failure;
 
   Executor executor(1);
-  BundleAdjustmentOptions delayed;
-  delayed.merge_delay_frames = 2;
-  LocalMapper mapper(beside_scene.camera, delayed, &executor);
+  LocalMapper mapper(beside_scene.camera, MergedAfter(2), &executor);
   MappingPacket packet = mapper.Process(10, true, beside_scene.map);
   EXPECT_TRUE(packet.started);
   EXPECT_EQ(packet.status, MappingStatus::kIdle);
@@ -93,9 +99,7 @@ TEST(LocalMapper, MovesWhatWasAddedMeanwhileWithTheRefinedKeyframe) {
   const Pose off = PoseFromAxisAngle({0, 0, 0}, {0.03, 0, 0}) * s.true_camera_from_world[4];
   s.map.SetKeyframePose(4, off);
   Executor executor(1);
-  BundleAdjustmentOptions delayed;
-  delayed.merge_delay_frames = 3;
-  LocalMapper mapper(s.camera, delayed, &executor);
+  LocalMapper mapper(s.camera, MergedAfter(3), &executor);
   EXPECT_EQ(mapper.Process(10, true, s.map).status, MappingStatus::kIdle);
   const Pose newer_from_old = PoseFromAxisAngle({0, 0.05, 0}, {-0.1, 0, 0});
   const Eigen::Vector3d point_in_old(0.2, -0.1, 2.5);  // in the old keyframe's camera
@@ -122,9 +126,7 @@ TEST(LocalMapper, DropsABaWhoseMapWasReseededMeanwhile) {
   Scene s;
   BuildScene(s, 5, 0.0, 4);
   Executor executor(1);
-  BundleAdjustmentOptions delayed;
-  delayed.merge_delay_frames = 1;
-  LocalMapper mapper(s.camera, delayed, &executor);
+  LocalMapper mapper(s.camera, MergedAfter(1), &executor);
   mapper.Process(10, true, s.map);
   s.map.Clear();
   const MappingPacket packet = mapper.Process(11, false, s.map);
@@ -135,7 +137,7 @@ TEST(LocalMapper, DropsABaWhoseMapWasReseededMeanwhile) {
 TEST(LocalMapper, SaysWhyWhenTheMapIsTooSmall) {
   Scene s;
   BuildScene(s, 2, 0.0, 4);
-  const MappingPacket packet = LocalMapper(s.camera, {}).Process(1, true, s.map);
+  const MappingPacket packet = LocalMapper(s.camera, MergedAfter(0)).Process(1, true, s.map);
   EXPECT_EQ(packet.status, MappingStatus::kFailed);
   EXPECT_EQ(packet.failure, "needs at least 3 keyframes (2 stay fixed)");
   EXPECT_EQ(ToString(packet.status), "failed");

@@ -61,11 +61,12 @@ struct Run {
 };
 
 // The tracker followed by the mapper (local BA after each keyframe from a tracked pose), as
-// odometry/odometry_pipeline.cc runs them: what the tracker's accuracy is judged with.
+// odometry/odometry_pipeline.cc runs them with local_ba.merge_delay_frames=0 (each BA joins the
+// map before the next frame): what the tracker's accuracy is judged with.
 class TrackerWithMapper {
  public:
   TrackerWithMapper(const Camera& camera, const TrackerOptions& options)
-      : tracker_(camera, options), mapper_(camera, {}) {}
+      : tracker_(camera, options), mapper_(camera, SolvedBeforeTheNextFrame()) {}
 
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr) {
     TrackingResult result = tracker_.Track(features, stamp, masked);
@@ -82,6 +83,12 @@ class TrackerWithMapper {
   double last_ba_ms() const { return last_ba_ms_; }
 
  private:
+  static BundleAdjustmentOptions SolvedBeforeTheNextFrame() {
+    BundleAdjustmentOptions options;
+    options.merge_delay_frames = 0;
+    return options;
+  }
+
   FrameTracker tracker_;
   LocalMapper mapper_;
   double last_ba_ms_ = 0.0;

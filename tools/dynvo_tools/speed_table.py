@@ -1,5 +1,6 @@
 """The tables of bench/speed.sh: from the `odometry_speed --json` files of its work folder, the
-per-frame time of dynvo against OpenCV's RgbdOdometry and ICPOdometry, and dynvo's per-stage split."""
+per-frame time of dynvo against OpenCV's RgbdOdometry and ICPOdometry, dynvo's per-stage split,
+and dynvo's latency when fed at a live camera's rate (`odometry_speed --rate`)."""
 from __future__ import annotations
 
 import argparse
@@ -42,12 +43,19 @@ def config_label(run: dict) -> str:
     return label
 
 
+def is_live(run: dict) -> bool:
+    """True for a run fed at a camera's rate (no peers; times from each frame's arrival)."""
+    return float(run.get("rate", 0)) > 0
+
+
 def write_csv(path: str, runs: list[dict]) -> None:
-    """One row per run."""
+    """One row per run fed back to back."""
     with open(path, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(CSV_COLUMNS)
         for j in runs:
+            if is_live(j):
+                continue
             m = j["methods"]
             writer.writerow([j["dataset"], os.path.basename(j["config"]).replace(".json", ""),
                              " ".join(j.get("overrides") or []), j["frames"], m["dynvo"]["median_ms"],
@@ -57,6 +65,8 @@ def write_csv(path: str, runs: list[dict]) -> None:
 
 def markdown(runs: list[dict], cpu: str) -> str:
     """The two tables with their captions."""
+    live = [j for j in runs if is_live(j)]
+    runs = [j for j in runs if not is_live(j)]
     lines = [
         "Per-frame processing time at 640x480 (frames decoded into memory first; median over frames, median of"
         " the runs), %d cores (%s). Each run of dynvo is followed, in the same process, by one run of each OpenCV"
@@ -81,7 +91,25 @@ def markdown(runs: list[dict], cpu: str) -> str:
         s = j["stages"]
         lines.append("| %s | %s | " % (j["dataset"], config_label(j)) + " | ".join(
             "%.2f / %.2f" % (s[n]["median_ms"], s[n]["mean_ms"]) for n in STAGES) + " |")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + live_table(live)) + "\n"
+
+
+def live_table(live: list[dict]) -> list[str]:
+    """The latency of the runs fed at a camera's rate (empty without such runs)."""
+    if not live:
+        return []
+    lines = [
+        "", "Fed as by a live camera (`odometry_speed --rate`, same frames): each frame's time from its arrival to"
+        " its pose, waits included. A frame is processed once the next one has arrived (the look-ahead of the"
+        " table above), so the pose is one frame period plus this time after the frame's own arrival. Work beside"
+        " tracking (the next frame's features and mask, the local BA, the detector) runs between frames; a"
+        " config that cannot keep up falls behind and its times grow with the frame count:", "",
+        "| sequence | config | camera frames/s | median ms | p90 ms | max ms |", "|---|---|---|---|---|---|"]
+    for j in live:
+        d = j["methods"]["dynvo"]
+        lines.append("| %s | %s | %g | %.1f | %.1f | %.1f |" % (
+            j["dataset"], config_label(j), float(j["rate"]), d["median_ms"], d["p90_ms"], d["max_ms"]))
+    return lines
 
 
 def run(args: argparse.Namespace) -> int:
