@@ -64,7 +64,7 @@ def write_csv(path: str, runs: list[dict]) -> None:
 
 
 def markdown(runs: list[dict], cpu: str) -> str:
-    """The two tables with their captions."""
+    """The tables with their captions (the live one only when there are live runs)."""
     live = [j for j in runs if is_live(j)]
     runs = [j for j in runs if not is_live(j)]
     lines = [
@@ -103,7 +103,8 @@ def live_table(live: list[dict]) -> list[str]:
         " its pose, waits included. A frame is processed once the next one has arrived (the look-ahead of the"
         " table above), so the pose is one frame period plus this time after the frame's own arrival. Work beside"
         " tracking (the next frame's features and mask, the local BA, the detector) runs between frames; a"
-        " config that cannot keep up falls behind and its times grow with the frame count:", "",
+        " config that cannot keep up falls behind and its times grow with the frame count. Median: the median of"
+        " the runs' medians; p90 and max: the last run:", "",
         "| sequence | config | camera frames/s | median ms | p90 ms | max ms |", "|---|---|---|---|---|---|"]
     for j in live:
         d = j["methods"]["dynvo"]
