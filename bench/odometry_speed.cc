@@ -162,14 +162,15 @@ DynvoRun RunDynvo(const std::vector<dynvo::RgbdFrame>& frames, const dynvo::Came
                   dynvo::Executor* executor) {
   dynvo::OdometryPipeline pipeline(camera, config, area, executor);
   DynvoRun run;
+  const bool live = rate > 0;
   const Clock::time_point start = Clock::now();
   for (size_t i = 0; i < frames.size(); ++i) {
     const bool has_next = i + 1 < frames.size();
-    const Clock::time_point ready = rate > 0 ? Arrival(start, has_next ? i + 1 : i, rate) : start;
-    if (rate > 0) std::this_thread::sleep_until(ready);
+    const Clock::time_point ready = live ? Arrival(start, has_next ? i + 1 : i, rate) : start;
+    if (live) std::this_thread::sleep_until(ready);
     const dynvo::FrameRecord rec = pipeline.Process(frames[i], has_next ? &frames[i + 1] : nullptr).record;
-    run.times.push_back(rate > 0 ? std::chrono::duration<double, std::milli>(Clock::now() - ready).count()
-                                 : rec.times.processing_ms);
+    run.times.push_back(live ? std::chrono::duration<double, std::milli>(Clock::now() - ready).count()
+                             : rec.times.processing_ms);
     run.trajectory.push_back({rec.stamp, rec.world_from_camera});
     run.stages["dynamic_mask"].push_back(rec.times.dynamic_mask_ms);
     run.stages["features"].push_back(rec.times.features_ms);

@@ -45,12 +45,12 @@ for seq in "${sequences[@]}"; do
       ${detector[@]+"${detector[@]}"} --json "$work/$(basename "$seq")_$mode.json" >&2
   done
   # As a live 30 Hz camera would feed them: each frame timed from its arrival (waits included).
-  for mode in baseline paper; do
+  for mode in baseline paper dynvo; do
+    model=()
+    [ "$mode" = dynvo ] && model=(${detector[@]+"${detector[@]}"})
     "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/$mode.json" --runs "$runs" --rate 30 --no-peers \
-      --json "$work/$(basename "$seq")_${mode}_live.json" >&2
+      ${model[@]+"${model[@]}"} --json "$work/$(basename "$seq")_${mode}_live.json" >&2
   done
-  "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/dynvo.json" --runs "$runs" --rate 30 --no-peers \
-    ${detector[@]+"${detector[@]}"} --json "$work/$(basename "$seq")_dynvo_live.json" >&2
   # Paper mode and configs/dynvo.json on one thread: each frame's stages in turn, in its own
   # call (the same results).
   "$bin/odometry_speed" --dataset "$seq" --config "$root/configs/paper.json" --runs "$runs" \
