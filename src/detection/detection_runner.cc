@@ -1,5 +1,6 @@
 #include "detection/detection_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <utility>
@@ -20,8 +21,23 @@ std::string ToString(DetectionStatus status) {
   return "";
 }
 
-DetectionRunner::DetectionRunner(std::unique_ptr<PersonDetector> detector, Executor& executor, double wait_ms)
-    : detector_(std::move(detector)), executor_(executor), wait_ms_(wait_ms) {}
+DetectionRunner::DetectionRunner(std::unique_ptr<PersonDetector> detector, Executor& executor, double wait_ms,
+                                 int every_frames)
+    : detector_(std::move(detector)),
+      executor_(executor),
+      wait_ms_(wait_ms),
+      every_frames_(static_cast<size_t>(std::max(every_frames, 1))) {}
+
+void DetectionRunner::StartOn(size_t index, const cv::Mat& bgr) {
+  if (index % every_frames_ == 0) Start(bgr);
+}
+
+DetectionOutcome DetectionRunner::TakeOn(size_t index, const cv::Mat& bgr) {
+  if (index % every_frames_ == 0) return Take(bgr);
+  DetectionOutcome carried;
+  carried.status = DetectionStatus::kCarried;
+  return carried;
+}
 
 void DetectionRunner::Start(const cv::Mat& bgr) {
   if (pending_.valid() && SameImage(pending_bgr_, bgr)) return;

@@ -4,8 +4,10 @@
 // detection of its own pixels. With a wait budget, a frame whose detection is not done in time
 // goes on without it (kTimedOut); the late detection is then dropped, and no new one starts
 // while it runs. Without a budget (the default) every frame waits for its detection, and runs
-// are deterministic.
+// are deterministic. With a cadence (detector.every_frames) only every k-th frame is detected;
+// the frames between get kCarried.
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,8 +42,9 @@ class DetectionRunner {
  public:
   // `wait_ms` <= 0: wait for every detection; else wait at most this long for one. `executor`
   // must outlive the runner; with no workers the detection runs on the waiting thread and the
-  // budget cannot hold.
-  DetectionRunner(std::unique_ptr<PersonDetector> detector, Executor& executor, double wait_ms = 0.0);
+  // budget cannot hold. `every_frames` (>= 1): the cadence of StartOn and TakeOn.
+  DetectionRunner(std::unique_ptr<PersonDetector> detector, Executor& executor, double wait_ms = 0.0,
+                  int every_frames = 1);
 
   // Starts detecting on `bgr` unless that image's detection is already under way. The detector
   // runs one image at a time: this waits for an earlier detection, unless it was given up
@@ -49,6 +52,10 @@ class DetectionRunner {
   void Start(const cv::Mat& bgr);
   // The detection of `bgr` (started here unless Start was called with the same pixels).
   DetectionOutcome Take(const cv::Mat& bgr);
+  // Start and Take for frame `index` of a sequence: on a frame between detections (every_frames)
+  // nothing starts and Take gives kCarried.
+  void StartOn(size_t index, const cv::Mat& bgr);
+  DetectionOutcome TakeOn(size_t index, const cv::Mat& bgr);
 
  private:
   struct Timed {
@@ -59,6 +66,7 @@ class DetectionRunner {
   std::shared_ptr<PersonDetector> detector_;  // shared with the running task
   Executor& executor_;
   double wait_ms_;
+  size_t every_frames_;
   Task<Timed> pending_;
   cv::Mat pending_bgr_;     // the pixels pending_ detects on
   bool abandoned_ = false;  // pending_ was given up by its frame: its result is dropped

@@ -25,7 +25,7 @@ void BindConfigKeys(const std::string& prefix, DetectorOptions* o, ConfigRegistr
   r->Bind(prefix + ".classes", &o->classes, "class ids treated as movable (0 = person in COCO models)");
   r->Bind(prefix + ".every_frames", &o->every_frames,
           "detect on every k-th frame; the frames between carry the last detection by the camera's motion "
-          "and cut it again by depth (a slower machine or a bigger model)");
+          "and cut it again by depth (1: every frame, as ipl.json; more: a slower machine or a bigger model)");
   r->Bind(prefix + ".wait_ms", &o->wait_ms,
           "> 0: a frame waits at most this long for its detection, then carries the last one (bounded latency, "
           "runs no longer deterministic); 0 = always wait");

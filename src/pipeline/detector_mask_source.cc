@@ -9,14 +9,10 @@ namespace dynvo {
 
 DetectorMaskSource::DetectorMaskSource(std::unique_ptr<PersonDetector> detector, const DetectorOptions& options,
                                        const KltOptions& klt, const HomographyOptions& homography, Executor& executor)
-    : options_(options), motion_(klt, homography), runner_(std::move(detector), executor, options.wait_ms) {}
-
-bool DetectorMaskSource::DetectsOn(const RgbdFrame& frame) const {
-  return frame.index % static_cast<size_t>(options_.every_frames) == 0;
-}
+    : motion_(klt, homography), runner_(std::move(detector), executor, options.wait_ms, options.every_frames) {}
 
 void DetectorMaskSource::LookAhead(const RgbdFrame& /*current*/, const RgbdFrame& next) {
-  if (DetectsOn(next)) runner_.Start(next.bgr);
+  runner_.StartOn(next.index, next.bgr);
 }
 
 MaskPacket DetectorMaskSource::Compute(const MaskSourceInput& input) {
@@ -25,13 +21,11 @@ MaskPacket DetectorMaskSource::Compute(const MaskSourceInput& input) {
   MaskPacket packet;
   packet.frame = frame.index;
   packet.SetMotion(motion_.Next(frame.gray, input.previous_mask));
-  DetectionOutcome carried;  // the frames between detections carry the last boxes
-  carried.status = DetectionStatus::kCarried;
-  packet.TakePeople(DetectsOn(frame) ? runner_.Take(frame.bgr) : carried, frame.gray.size(), &people_);
+  // The frames between detections carry the last boxes.
+  packet.TakePeople(runner_.TakeOn(frame.index, frame.bgr), frame.gray.size(), &people_);
   packet.status = MaskStatus::kDetected;
   packet.mask = cv::Mat::zeros(frame.gray.size(), CV_8UC1);
-  for (const Detection& person : packet.people)
-    packet.mask |= PersonMaskFromBox(frame.depth, person.box, person_mask_);
+  for (const Detection& person : packet.people) packet.mask |= PersonMaskFromBox(frame.depth, person.box, person_mask_);
   packet.dynamic_ratio = DynamicRatio(packet.mask);
   packet.ms = MillisecondsSince(start);  // with the detection's own time when it ran here
   return packet;

@@ -38,9 +38,6 @@ class DetectorMaskSource : public MaskSource {
   void LookAhead(const RgbdFrame& current, const RgbdFrame& next) override;
 
  private:
-  bool DetectsOn(const RgbdFrame& frame) const;
-
-  DetectorOptions options_;
   PersonMaskOptions person_mask_;
   FrameMotion motion_;
   DetectionRunner runner_;

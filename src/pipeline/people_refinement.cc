@@ -28,14 +28,15 @@ std::optional<Eigen::Vector3d> MaskCentre(const cv::Mat& mask, const cv::Mat& de
 
 PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector,
                                    const DetectorOptions& options, Executor& executor)
-    : camera_(camera), runner_(std::move(detector), executor, options.wait_ms) {}
+    : camera_(camera), runner_(std::move(detector), executor, options.wait_ms, options.every_frames) {}
 
-void PeopleRefinement::Begin(const RgbdFrame& frame) { runner_.Start(frame.bgr); }
+void PeopleRefinement::Begin(const RgbdFrame& frame) { runner_.StartOn(frame.index, frame.bgr); }
 
-void PeopleRefinement::LookAhead(const RgbdFrame& next) { runner_.Start(next.bgr); }
+void PeopleRefinement::LookAhead(const RgbdFrame& next) { runner_.StartOn(next.index, next.bgr); }
 
 void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
-  mask->TakePeople(runner_.Take(frame.bgr), frame.gray.size(), &people_);
+  // The frames between detections carry the last people.
+  mask->TakePeople(runner_.TakeOn(frame.index, frame.bgr), frame.gray.size(), &people_);
   const std::vector<Detection>& people = mask->people;
   const auto start = SteadyClock::now();
   std::vector<cv::Mat> silhouettes;

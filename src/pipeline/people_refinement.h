@@ -4,7 +4,9 @@
 // join the mask when they are judged moving from geometry (detection/moving_people.h: the
 // differencing covers part of them, or they move in the world); people judged still keep their
 // features. What differencing finds without a detection (movers that are not people) stays.
-// The detection of frame t+1 runs on the executor while frame t is tracked.
+// The detection of frame t+1 runs on the executor while frame t is tracked; with
+// detector.every_frames = k only every k-th frame is detected, and the frames between carry the
+// last people by the mask's homography.
 
 #include <memory>
 
@@ -22,15 +24,16 @@ namespace dynvo {
 
 class PeopleRefinement : public MaskRefinement {
  public:
-  // `options` (detector.wait_ms) must have passed Check(); `executor` must outlive the refinement.
+  // `options` (detector.every_frames, wait_ms) must have passed Check(); `executor` must outlive
+  // the refinement.
   PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector, const DetectorOptions& options,
                    Executor& executor);
 
   void Begin(const RgbdFrame& frame) override;
   void LookAhead(const RgbdFrame& next) override;
   // Frame t's moving people join the mask; every person found is listed in `mask->people`.
-  // When the detection failed or timed out, the last frame's people are carried by the mask's
-  // homography.
+  // On a frame between detections, or when the detection failed or timed out, the last frame's
+  // people are carried by the mask's homography.
   void Refine(const RgbdFrame& frame, MaskPacket* mask) override;
   // Frame t's pose places its people in the world, for the speed of the next frames.
   void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) override;

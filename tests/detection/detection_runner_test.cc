@@ -58,6 +58,21 @@ TEST(DetectionRunner, DetectsEachImageOnceWhetherStartedAheadOrNot) {
   EXPECT_EQ(gate.calls, 2);
 }
 
+TEST(DetectionRunner, WithACadenceOnlyEveryKthFrameIsDetected) {
+  GatedDetector::Gate gate;
+  Executor executor(2);
+  DetectionRunner runner(std::make_unique<GatedDetector>(&gate), executor, /*wait_ms=*/0.0, /*every_frames=*/3);
+  for (size_t index = 0; index < 7; ++index) {
+    const cv::Mat image = Image();
+    runner.StartOn(index, image);  // ahead, as the pipeline's look-ahead does
+    const DetectionOutcome outcome = runner.TakeOn(index, image);
+    const bool detected = index % 3 == 0;
+    EXPECT_EQ(outcome.status, detected ? DetectionStatus::kDetected : DetectionStatus::kCarried) << "frame " << index;
+    EXPECT_EQ(outcome.people.size(), detected ? 1u : 0u) << "frame " << index;
+  }
+  EXPECT_EQ(gate.calls, 3);  // frames 0, 3 and 6
+}
+
 TEST(DetectionRunner, AFailureIsAStatusWithItsReason) {
   GatedDetector::Gate gate;
   Executor executor(0);

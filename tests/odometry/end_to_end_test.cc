@@ -286,8 +286,21 @@ TEST_F(EndToEnd, TimingSaysWhetherEachLocalBaConverged) {
   EXPECT_EQ(nlohmann::json::parse(ReadTextFile(off + "/run.json"))["counts"]["local_ba"]["adjusted"], 0);
 }
 
+// The run in `dir` (of `frames` frames) detected on every `k`-th frame, and each frame between
+// carried the last detection, one frame older each time.
+void ExpectDetectedEvery(const std::string& dir, size_t k, size_t frames) {
+  const std::vector<std::string> ages = TimingColumn(dir, "detection_age");
+  const std::vector<std::string> statuses = TimingColumn(dir, "detector_status");
+  ASSERT_EQ(ages.size(), frames);
+  for (size_t i = 0; i < ages.size(); ++i) {
+    EXPECT_EQ(ages[i], std::to_string(i % k)) << "frame " << i;
+    EXPECT_EQ(statuses[i], i % k == 0 ? "detected" : "carried") << "frame " << i;
+  }
+}
+
 // Two articulated photo people walking 1-3 m from the camera, in view from the first frame (the
-// TUM scenario of the generator), found by the shared Yolo-Fastest body model.
+// TUM scenario of the generator), found by the shared Yolo-Fastest body model: on every frame
+// (ipl.json), on every second (dynvo.json) or every third.
 TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   DYNVO_REQUIRE_SHARED(shared);
   test::TempDir dir;
@@ -330,6 +343,7 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   RunOn(sequence, "dynvo.json", fused_in_turn, model, 1);  // the detection ahead or in turn: the same
   EXPECT_EQ(ReadTextFile(fused + "/trajectory.txt"), ReadTextFile(fused_in_turn + "/trajectory.txt"));
   EXPECT_EQ(TimingWithoutTimes(fused), TimingWithoutTimes(fused_in_turn));
+  ExpectDetectedEvery(fused, 2, 90);  // the frame between carries the people, one frame old
   RunOn(sequence, "dynvo.json", geometric, {"detector.model=\"/no/model.weights\""}, 0);
   const nlohmann::json with = nlohmann::json::parse(ReadTextFile(fused + "/run.json"));
   const nlohmann::json without = nlohmann::json::parse(ReadTextFile(geometric + "/run.json"));
@@ -352,6 +366,7 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   EXPECT_EQ(with["counts"]["detector"]["people_moving"], moving);
   EXPECT_EQ(with["counts"]["detector"]["people_still"], judged - moving);
   EXPECT_EQ(with["counts"]["detector"]["timed_out"], 0);
+  EXPECT_EQ(with["counts"]["detector"]["frames_detected"], 45);
   EXPECT_TRUE(with["time"]["stages"].contains("detector_ms"));
   EXPECT_FALSE(without["time"]["stages"].contains("detector_ms"));
   // Every third frame detected: the two between carry the boxes, one and two frames old.
@@ -359,13 +374,7 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   every_third.push_back("detector.every_frames=3");
   const std::string third = (dir.path() / "third").string();
   RunOn(sequence, "ipl.json", third, every_third, 0);
-  const std::vector<std::string> ages = TimingColumn(third, "detection_age");
-  const std::vector<std::string> statuses = TimingColumn(third, "detector_status");
-  ASSERT_EQ(ages.size(), 90u);
-  for (size_t i = 0; i < ages.size(); ++i) {
-    EXPECT_EQ(ages[i], std::to_string(i % 3)) << "frame " << i;
-    EXPECT_EQ(statuses[i], i % 3 == 0 ? "detected" : "carried") << "frame " << i;
-  }
+  ExpectDetectedEvery(third, 3, 90);
 }
 
 TEST_F(EndToEnd, AFrameThatFailsToLoadKeepsEveryFrameBeforeIt) {

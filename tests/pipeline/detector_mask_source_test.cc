@@ -5,10 +5,8 @@
 // leaves the frames going with the carried boxes and the reason, and so does one stuck past
 // the wait budget.
 
-#include <algorithm>
 #include <future>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -19,6 +17,7 @@
 #include "detection/yolo_detector.h"
 #include "pipeline/detector_mask_source.h"
 #include "pipeline_frames.h"
+#include "scripted_detector.h"
 #include "support/shared_data.h"
 
 namespace dynvo {
@@ -51,21 +50,6 @@ std::unique_ptr<DetectorMaskSource> YoloSource(const std::string& shared, Execut
   return std::make_unique<DetectorMaskSource>(std::make_unique<YoloDetector>(options), options, KltOptions{},
                                               HomographyOptions{}, executor);
 }
-
-// A detector that finds one fixed box, counts its calls, and fails on the calls listed.
-class ScriptedDetector : public PersonDetector {
- public:
-  ScriptedDetector(int* calls, std::vector<int> failing) : calls_(calls), failing_(std::move(failing)) {}
-  std::vector<Detection> Detect(const cv::Mat& /*bgr*/) override {
-    const int call = (*calls_)++;
-    if (std::find(failing_.begin(), failing_.end(), call) != failing_.end()) throw InputError("scripted failure");
-    return {{cv::Rect2d(300, 100, 80, 200), 0.9, 0}};
-  }
-
- private:
-  int* calls_;
-  std::vector<int> failing_;
-};
 
 TEST(DetectorMaskSource, MasksEachPersonInsideItsBox) {
   DYNVO_REQUIRE_SHARED(shared);
@@ -110,7 +94,7 @@ TEST(DetectorMaskSource, CarriesTheBoxesByTheCamerasMotionBetweenDetections) {
   DetectorOptions options;
   options.every_frames = 3;
   Executor executor(0);
-  DetectorMaskSource source(std::make_unique<ScriptedDetector>(&calls, std::vector<int>{}), options, KltOptions{},
+  DetectorMaskSource source(std::make_unique<test::ScriptedDetector>(&calls, std::vector<int>{}), options, KltOptions{},
                             HomographyOptions{}, executor);
   for (int i = 0; i < 4; ++i) {
     const MaskPacket packet = ComputeOn(source, test::PanningFrame(i, false));
@@ -127,7 +111,7 @@ TEST(DetectorMaskSource, CarriesTheBoxesByTheCamerasMotionBetweenDetections) {
 TEST(DetectorMaskSource, AFailingDetectorLeavesTheFramesGoingWithTheCarriedBoxes) {
   int calls = 0;
   Executor executor(2);
-  DetectorMaskSource source(std::make_unique<ScriptedDetector>(&calls, std::vector<int>{1, 2}), DetectorOptions{},
+  DetectorMaskSource source(std::make_unique<test::ScriptedDetector>(&calls, std::vector<int>{1, 2}), DetectorOptions{},
                             KltOptions{}, HomographyOptions{}, executor);
   std::vector<RgbdFrame> frames;  // one decoded frame handed to both calls, as the pipeline does
   for (int i = 0; i < 4; ++i) frames.push_back(test::PanningFrame(i, false));
