@@ -31,6 +31,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/rgbd.hpp>
 
+#include "core/build_info.h"
 #include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "dataset/tum_dataset.h"
@@ -319,6 +320,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-peers", args.no_peers, "time dynvo only, not the OpenCV odometries");
   app.add_option("--trajectories-out", args.trajectories_out, "write each method's trajectory here");
   app.add_option("--json", args.json_out, "write the figures as JSON to this file");
+  app.set_version_flag("--version", dynvo::VersionLine("odometry_speed"));
   CLI11_PARSE(app, argc, argv);
   try {
     return MeasureSpeed(args);

@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/build_info.h"
 #include "core/error.h"
 #include "dataset/tum_dataset.h"
 #include "dynamic_mask/background_fill.h"
@@ -141,6 +142,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "dynvo config (default: the built-in recommended config)");
   app.add_option("--set", overrides, "config override key=value (repeatable)");
   app.add_option("--frames", max_frames, "use at most this many frames")->check(CLI::Range(2, 100000));
+  app.set_version_flag("--version", dynvo::VersionLine("stage_costs"));
   CLI11_PARSE(app, argc, argv);
   try {
     const dynvo::OdometryConfig config = dynvo::LoadOdometryConfig(config_path, overrides);

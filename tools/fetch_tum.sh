@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Downloads and unpacks the TUM RGB-D sequences of the paper's Table 1.
+# Downloads and unpacks TUM RGB-D sequences (default: the 9 of the paper's Table 1) and Bonn
+# RGB-D Dynamic sequences.
 #   bash tools/fetch_tum.sh [--dest DIR] [SEQUENCE...]
-# SEQUENCE names are the TUM folder names (default: the 9 of Table 1). Resumable: partial
-# archives are continued; sequences already unpacked (rgb.txt, depth.txt and groundtruth.txt
-# present) are skipped; every archive is checked with `tar -tzf` before unpacking.
+# SEQUENCE names are the folder names: TUM's rgbd_dataset_freiburgN_*, Bonn's rgbd_bonn_*.
+# Resumable: partial archives are continued; sequences already unpacked (rgb.txt, depth.txt
+# and groundtruth.txt present) are skipped; every archive is checked before unpacking.
 set -euo pipefail
 
 dest="data/tum"
@@ -11,7 +12,7 @@ sequences=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --dest) dest="$2"; shift 2 ;;
-    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
     -*) echo "fetch_tum: error: unknown option '$1' (expected --dest DIR or sequence names)" >&2; exit 2 ;;
     *) sequences+=("$1"); shift ;;
   esac
@@ -29,8 +30,10 @@ if [ ${#sequences[@]} -eq 0 ]; then
     rgbd_dataset_freiburg3_walking_xyz
   )
 fi
-# Mirrors of the TUM RGB-D benchmark, tried in order.
+# Mirrors of the TUM RGB-D benchmark, tried in order; the Bonn RGB-D Dynamic dataset's site.
 mirrors=("https://cvg.cit.tum.de/rgbd/dataset" "https://vision.in.tum.de/rgbd/dataset")
+bonn="https://www.ipb.uni-bonn.de/html/projects/rgbd_dynamic2019"
+python="${PYTHON:-/usr/bin/python3}"
 
 command -v curl >/dev/null || { echo "fetch_tum: error: curl is required (apt-get install curl)" >&2; exit 1; }
 mkdir -p "$dest"
@@ -39,30 +42,40 @@ complete() { [ -f "$1/rgb.txt" ] && [ -f "$1/depth.txt" ] && [ -f "$1/groundtrut
 
 failed=()
 for seq in "${sequences[@]}"; do
-  if [[ ! "$seq" =~ ^rgbd_dataset_freiburg([123])_[a-z0-9_]+$ ]]; then
-    echo "fetch_tum: error: '$seq' is not a TUM sequence name (rgbd_dataset_freiburgN_...)" >&2
+  urls=()
+  if [[ "$seq" =~ ^rgbd_dataset_freiburg([123])_[a-z0-9_]+$ ]]; then
+    archive="$dest/$seq.tgz"
+    for mirror in "${mirrors[@]}"; do urls+=("$mirror/freiburg${BASH_REMATCH[1]}/$seq.tgz"); done
+  elif [[ "$seq" =~ ^rgbd_bonn_[a-z0-9_]+$ ]]; then
+    archive="$dest/$seq.zip"
+    urls=("$bonn/$seq.zip")
+  else
+    echo "fetch_tum: error: '$seq' is not a TUM (rgbd_dataset_freiburgN_...) or Bonn (rgbd_bonn_...) sequence name" >&2
     exit 2
   fi
   if complete "$dest/$seq"; then
     echo "fetch_tum: $seq present, skipped"
     continue
   fi
-  archive="$dest/$seq.tgz"
   ok=0
-  for mirror in "${mirrors[@]}"; do
-    url="$mirror/freiburg${BASH_REMATCH[1]}/$seq.tgz"
+  for url in "${urls[@]}"; do
     echo "fetch_tum: downloading $url"
     if curl -fL --retry 3 --connect-timeout 20 -C - -o "$archive" "$url"; then ok=1; break; fi
   done
   if [ $ok -ne 1 ]; then
-    echo "fetch_tum: error: could not download $seq (offline, or the TUM site unreachable); rerun to resume" >&2
+    echo "fetch_tum: error: could not download $seq (offline, or the site unreachable); rerun to resume" >&2
     failed+=("$seq"); continue
   fi
-  if ! tar -tzf "$archive" >/dev/null 2>&1; then
+  if [[ "$archive" == *.zip ]]; then
+    check=("$python" -m zipfile -t "$archive"); unpack=("$python" -m zipfile -e "$archive" "$dest")
+  else
+    check=(tar -tzf "$archive"); unpack=(tar -xzf "$archive" -C "$dest")
+  fi
+  if ! "${check[@]}" >/dev/null 2>&1; then
     echo "fetch_tum: error: $archive is corrupt; removed, rerun to download again" >&2
     rm -f "$archive"; failed+=("$seq"); continue
   fi
-  tar -xzf "$archive" -C "$dest"
+  "${unpack[@]}"
   if complete "$dest/$seq"; then
     rm -f "$archive"
     echo "fetch_tum: $seq ready in $dest/$seq"

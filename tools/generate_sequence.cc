@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,7 +19,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Generate a synthetic dynamic RGB-D sequence (TUM layout, ground-truth poses and masks)"};
   std::string scenario = "walking_across", camera_path = "xyz", intrinsics = "fr3", out;
   int frames = 300, width = 640, height = 480;
-  double fps = 30, fx = 0, fy = 0, cx = -1, cy = -1;
+  double fps = 30;
+  std::optional<double> fx, fy, cx, cy;
   unsigned seed = 1;
   bool motion_blur = false, kinect_sensor = false, force = false;
   app.add_option("--scenario", scenario,
@@ -71,10 +73,10 @@ int main(int argc, char** argv) {
     camera.cy = (camera.cy + 0.5) * sy - 0.5;
     camera.width = width;
     camera.height = height;
-    if (fx > 0) camera.fx = fx;
-    if (fy > 0) camera.fy = fy;
-    if (cx >= 0) camera.cx = cx;
-    if (cy >= 0) camera.cy = cy;
+    if (fx) camera.fx = *fx;
+    if (fy) camera.fy = *fy;
+    if (cx) camera.cx = *cx;
+    if (cy) camera.cy = *cy;
     options.camera = camera;
     options.Check();
     dynvo::PrepareOutputFolder(out, force);

@@ -4,17 +4,20 @@
 #include <fstream>
 #include <iostream>
 
+#include "apps/command_line_hint.h"
+#include "core/build_info.h"
 #include "core/error.h"
 
 namespace dynvo {
 
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
   const std::string name = app.get_name();
+  app.set_version_flag("--version", VersionLine(name));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << name << ": error: " << e.what() << " (see " << name << " --help)\n";
+    std::cerr << name << ": error: " << e.what() << ClosestArgumentHint(app) << " (see " << name << " --help)\n";
     return 2;
   }
   try {

@@ -9,6 +9,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "apps/command_line_hint.h"
+#include "apps/stop_signals.h"
+#include "core/build_info.h"
 #include "core/error.h"
 #include "odometry/odometry_config.h"
 #include "odometry/sequence_runner.h"
@@ -65,6 +68,7 @@ void PrintConfigKeys(bool markdown) {
 int main(int argc, char** argv) {
   CLI::App app{"dynvo-cli: RGB-D visual odometry for scenes with moving people and objects"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", dynvo::VersionLine("dynvo-cli"));
 
   dynvo::RunRequest request;
   std::string debug_frames;
@@ -91,7 +95,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::fprintf(stderr, "dynvo-cli: error: %s%s (see dynvo-cli --help)\n", e.what(),
+                 dynvo::ClosestArgumentHint(app).c_str());
+    return 2;
   }
 
   try {
@@ -100,7 +107,14 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (!debug_frames.empty()) request.debug_frames = ParseFrameList(debug_frames);
+    const dynvo::StopSignals signals;
+    request.stop_requested = [&signals] { return signals.received() != 0; };
     const nlohmann::json report = dynvo::RunOdometry(request);
+    if (signals.received() != 0) {
+      std::fprintf(stderr, "dynvo-cli: interrupted after %zu frames; trajectory, timing and run.json in %s\n",
+                   report["counts"]["frames"].get<size_t>(), request.out_dir.c_str());
+      return 128 + signals.received();
+    }
     if (!request.quiet) {
       const auto& t = report["time"];
       std::fprintf(stderr,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/close_match.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -117,12 +118,17 @@ void ConfigRegistry::ApplyValue(const std::string& key, const nlohmann::json& va
   if (it == entries_.end()) {
     const auto moved = moved_.find(key);
     if (moved != moved_.end()) throw InputError(source + ": key '" + key + "' " + moved->second);
-    // Suggest the keys of the same section, which is where typos usually are.
+    // The closest key first, then the keys of the same section, which is where typos usually are.
+    std::vector<std::string> keys;
     std::string hint;
     const std::string section = key.substr(0, key.find('.'));
-    for (const auto& [known, entry] : entries_)
+    for (const auto& [known, entry] : entries_) {
+      keys.push_back(known);
       if (known.rfind(section + ".", 0) == 0) hint += (hint.empty() ? "" : ", ") + known;
+    }
+    const std::string closest = CloseMatch(key, keys);
     throw InputError(source + ": unknown key '" + key + "'" +
+                     (closest.empty() ? "" : ", did you mean '" + closest + "'?") +
                      (hint.empty() ? "" : " (keys of '" + section + "': " + hint + ")"));
   }
   it->second.set(value, source + ": key '" + key + "'");

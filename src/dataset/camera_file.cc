@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_file.h"
 #include "dataset/text_lines.h"
 
 namespace dynvo {
@@ -34,12 +35,7 @@ int PositiveInteger(const json& root, const std::string& key, const std::string&
 
 CameraFile ReadCameraFile(const std::string& path) {
   const std::string text = ReadTextFile(path);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    ThrowFileError(path, 0, std::string("not valid JSON: ") + e.what());
-  }
+  const json root = ParseJsonStrictly(text, path);
   if (!root.is_object()) ThrowFileError(path, 0, "expected a JSON object");
   static const char* const kKeys[] = {"width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor"};
   for (const auto& item : root.items()) {

@@ -12,8 +12,7 @@ std::vector<ImageListEntry> ParseImageList(const std::string& text, const std::s
       ThrowFileError(source, line.number,
                      "expected 2 columns 'timestamp filename', got " + std::to_string(line.fields.size()));
     ImageListEntry entry;
-    if (!ParseDouble(line.fields[0], &entry.stamp))
-      ThrowFileError(source, line.number, "timestamp is not a finite number: '" + line.fields[0] + "'");
+    entry.stamp = ParseStampField(line.fields[0], source, line.number, "timestamp");
     if (!entries.empty() && !(entry.stamp > entries.back().stamp))
       ThrowFileError(source, line.number,
                      "timestamps must strictly increase, got " + line.fields[0] + " after " +

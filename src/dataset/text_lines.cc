@@ -36,6 +36,14 @@ std::vector<TextLine> SplitDataLines(const std::string& text) {
   return lines;
 }
 
+std::filesystem::file_status PathStatus(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+    ThrowFileError(path, 0, "cannot examine: " + ec.message());
+  return status;
+}
+
 std::string ReadTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) ThrowFileError(path, 0, "cannot open file");
@@ -54,6 +62,16 @@ bool ParseDouble(const std::string& field, double* value) {
   if (end != begin + field.size() || errno == ERANGE || !std::isfinite(v)) return false;
   *value = v;
   return true;
+}
+
+double ParseStampField(const std::string& field, const std::string& source, int line, const std::string& what) {
+  double stamp = 0;
+  if (!ParseDouble(field, &stamp)) ThrowFileError(source, line, what + " is not a finite number: '" + field + "'");
+  if (std::abs(stamp) >= kMaxStampSeconds)
+    ThrowFileError(source, line,
+                   what + " " + field +
+                       " is not a time in seconds (1e12 or more; nanoseconds? divide by 1e9): stamps are seconds");
+  return stamp;
 }
 
 }  // namespace dynvo

@@ -1,13 +1,19 @@
 #include "dataset/trajectory_io.h"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "dataset/text_lines.h"
 
 namespace dynvo {
+namespace {
+
+// Translations beyond this are no camera's: their squares would overflow the metrics' sums.
+constexpr double kMaxTranslationM = 1e9;
+
+}  // namespace
 
 Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
   Trajectory trajectory;
@@ -16,12 +22,19 @@ Trajectory ParseTrajectory(const std::string& text, const std::string& source) {
       ThrowFileError(source, line.number,
                      "expected 8 columns 'timestamp tx ty tz qx qy qz qw', got " + std::to_string(line.fields.size()));
     double v[8];
-    for (int i = 0; i < 8; ++i)
+    v[0] = ParseStampField(line.fields[0], source, line.number, "timestamp");
+    for (int i = 1; i < 8; ++i)
       if (!ParseDouble(line.fields[i], &v[i]))
         ThrowFileError(source, line.number,
                        "column " + std::to_string(i + 1) + " is not a finite number: '" + line.fields[i] + "'");
+    for (int i = 1; i < 4; ++i)
+      if (std::abs(v[i]) > kMaxTranslationM)
+        ThrowFileError(source, line.number,
+                       "column " + std::to_string(i + 1) + " is " + line.fields[i] +
+                           ": a translation beyond 1e9 m is no camera's (a diverged estimate?)");
     const double qnorm = std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
     if (qnorm < 1e-9) ThrowFileError(source, line.number, "quaternion has zero length");
+    if (!std::isfinite(qnorm)) ThrowFileError(source, line.number, "quaternion too large to normalise");
     if (!trajectory.empty() && v[0] < trajectory.back().stamp)
       ThrowFileError(source, line.number, "timestamps must increase, got " + line.fields[0] + " after a larger one");
     const StampedPose pose{v[0], PoseFromTum({v[1], v[2], v[3]}, v[4], v[5], v[6], v[7])};
@@ -39,13 +52,12 @@ Trajectory ReadTrajectory(const std::string& path) { return ParseTrajectory(Read
 
 std::string FormatTrajectory(const Trajectory& trajectory) {
   std::string out;
-  char buffer[256];
   for (const StampedPose& p : trajectory) {
     const Eigen::Vector3d& t = p.world_from_camera.translation();
     const Eigen::Quaterniond q = PoseQuaternion(p.world_from_camera);
-    std::snprintf(buffer, sizeof(buffer), "%.6f %.7f %.7f %.7f %.7f %.7f %.7f %.7f\n", p.stamp, t.x(), t.y(), t.z(),
-                  q.x(), q.y(), q.z(), q.w());
-    out += buffer;
+    out += StampText(p.stamp);
+    for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) out += " " + FixedText(v, 7);
+    out += "\n";
   }
   return out;
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -11,9 +10,9 @@
 
 #include "core/config_registry.h"
 #include "core/error.h"
-#include "dataset/camera_file.h"
+#include "core/number_text.h"
 #include "dataset/stamp_matching.h"
-#include "dataset/tum_camera.h"
+#include "dataset/text_lines.h"
 
 namespace dynvo {
 namespace {
@@ -29,11 +28,7 @@ std::string Number(double value) {
   return out.str();
 }
 
-std::string Stamp(double stamp) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.6f", stamp);
-  return buffer;
-}
+std::string Stamp(double stamp) { return StampText(stamp); }
 
 std::string BaseName(const std::string& folder) {
   fs::path path = fs::absolute(fs::path(folder)).lexically_normal();
@@ -58,37 +53,30 @@ void TumDatasetOptions::Check() const {
   if (!std::isfinite(max_time_difference) || !(max_time_difference > 0))
     throw InputError("dataset.max_time_difference must be > 0 (seconds), got " + Number(max_time_difference));
   if (!std::isfinite(depth_factor) || !(depth_factor >= 0))
-    throw InputError("dataset.depth_factor must be >= 0 (PNG value per metre; 0: by folder name), got " +
+    throw InputError("dataset.depth_factor must be >= 0 (PNG value per metre; 0: by the camera), got " +
                      Number(depth_factor));
-  if (camera) camera->Check("dataset.camera");
+  camera.Check();
 }
 
 TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& options)
     : folder_(folder), options_(options) {
   options_.Check();
-  if (!fs::is_directory(folder_)) ThrowFileError(folder_, 0, "no such folder");
+  if (!fs::is_directory(PathStatus(folder_))) ThrowFileError(folder_, 0, "no such folder");
   name_ = BaseName(folder_);
   rgb_list_ = (fs::path(folder_) / "rgb.txt").string();
   depth_list_ = (fs::path(folder_) / "depth.txt").string();
   masks_list_ = (fs::path(folder_) / "masks.txt").string();
   for (const std::string* list : {&rgb_list_, &depth_list_})
-    if (!fs::is_regular_file(*list))
+    if (!fs::is_regular_file(PathStatus(*list)))
       ThrowFileError(*list, 0, "missing file (a TUM sequence folder has rgb.txt and depth.txt)");
   rgb_ = ReadImageList(rgb_list_);
   depth_ = ReadImageList(depth_list_);
 
-  // Intrinsics: options.camera > camera.json > folder name > ROS default. Depth factor:
-  // camera.json (how its folder's PNGs were written) > the option > folder name.
-  depth_factor_ = options_.depth_factor > 0 ? options_.depth_factor : TumDepthFactorForSequence(name_);
-  const std::string camera_json = (fs::path(folder_) / "camera.json").string();
-  if (fs::exists(camera_json)) {
-    const CameraFile file = ReadCameraFile(camera_json);
-    raw_camera_ = file.camera;
-    if (file.depth_factor) depth_factor_ = *file.depth_factor;
-  } else {
-    raw_camera_ = TumCameraForSequence(name_);
-  }
-  if (options_.camera) raw_camera_ = *options_.camera;
+  const ChosenCamera chosen = ChooseCamera(folder_, name_, options_.camera, options_.depth_factor);
+  raw_camera_ = chosen.camera;
+  depth_factor_ = chosen.depth_factor;
+  camera_origin_ = chosen.camera_origin;
+  depth_factor_origin_ = chosen.depth_factor_origin;
   camera_ = raw_camera_;
   remap_ = options_.undistort && raw_camera_.HasDistortion();
   if (remap_) {
@@ -122,12 +110,12 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
   unmatched_rgb_ = rgb_.size() - frames_.size();
 
   const std::string groundtruth = (fs::path(folder_) / "groundtruth.txt").string();
-  if (fs::exists(groundtruth)) {
+  if (fs::exists(PathStatus(groundtruth))) {
     groundtruth_ = ReadTrajectory(groundtruth);
     has_groundtruth_ = true;
   }
 
-  if (fs::exists(masks_list_)) {
+  if (fs::exists(PathStatus(masks_list_))) {
     has_masks_ = true;
     masks_ = ReadImageList(masks_list_);
     for (FramePaths& frame : frames_) {
@@ -152,6 +140,10 @@ const ImageArea& TumDataset::image_area() const { return image_area_; }
 
 double TumDataset::depth_factor() const { return depth_factor_; }
 
+const std::string& TumDataset::camera_origin() const { return camera_origin_; }
+
+const std::string& TumDataset::depth_factor_origin() const { return depth_factor_origin_; }
+
 bool TumDataset::has_groundtruth() const { return has_groundtruth_; }
 
 const Trajectory& TumDataset::groundtruth() const { return groundtruth_; }
@@ -167,8 +159,19 @@ std::string TumDataset::name() const { return name_; }
 cv::Mat TumDataset::ReadPng(const ImageListEntry& entry, const std::string& list_path) const {
   const std::string path = (fs::path(folder_) / entry.path).string();
   const std::string where = " (listed at " + list_path + ":" + std::to_string(entry.line) + ")";
-  if (!fs::is_regular_file(path)) ThrowFileError(path, 0, "missing image" + where);
-  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  fs::file_status status;
+  try {
+    status = PathStatus(path);  // a symlink loop or a name too long: an input error like any other
+  } catch (const InputError& e) {
+    throw InputError(e.what() + where);
+  }
+  if (!fs::is_regular_file(status)) ThrowFileError(path, 0, "missing image" + where);
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    ThrowFileError(path, 0, std::string("cannot decode image: ") + e.what() + where);
+  }
   if (image.empty()) ThrowFileError(path, 0, "cannot decode image" + where);
   if (image.cols != raw_camera_.width || image.rows != raw_camera_.height)
     ThrowFileError(path, 0,
@@ -234,8 +237,8 @@ void BindConfigKeys(const std::string& prefix, TumDatasetOptions* o, ConfigRegis
   r->Bind(prefix + ".max_time_difference", &o->max_time_difference,
           "seconds; RGB and depth stamps further apart are not associated");
   r->Bind(prefix + ".depth_factor", &o->depth_factor,
-          "depth PNG value per metre; 0 = by the folder: camera.json's depth_factor, else 5208 for a TUM "
-          "freiburg2 folder (its Kinect reads depth about 4% too far, as ORB-SLAM2 corrects), else 5000");
+          "depth PNG value per metre; 0 = by the camera: camera.json's depth_factor, else 5208 for the TUM "
+          "freiburg2 camera (its Kinect reads depth about 4% too far, as ORB-SLAM2 corrects), else 5000");
   r->Bind(prefix + ".undistort", &o->undistort,
           "remap images to an undistorted pinhole camera when the camera has distortion");
 }

@@ -11,6 +11,7 @@
 
 #include "core/camera.h"
 #include "core/image_area.h"
+#include "dataset/camera_choice.h"
 #include "dataset/image_list.h"
 #include "dataset/trajectory_io.h"
 
@@ -20,13 +21,12 @@ class ConfigRegistry;
 
 struct TumDatasetOptions {
   double max_time_difference = 0.02;  // s, RGB-depth association (strictly below)
-  double depth_factor = 0.0;          // PNG value per metre; camera.json "depth_factor" wins;
-                                      // 0: by folder name (TumDepthFactorForSequence)
+  double depth_factor = 0.0;          // PNG value per metre; 0: by the camera (ChooseCamera)
   bool undistort = true;              // remap images when the camera has distortion
-  std::optional<Camera> camera;       // overrides every other source of intrinsics
+  CameraChoice camera;                // where the intrinsics come from
 
-  // Throws InputError naming "dataset.max_time_difference", "dataset.depth_factor" or
-  // "dataset.camera" when a value is out of range.
+  // Throws InputError naming "dataset.max_time_difference", "dataset.depth_factor" or the
+  // camera.* key when a value is out of range.
   void Check() const;
 };
 
@@ -46,9 +46,10 @@ struct RgbdFrame {
 class TumDataset {
  public:
   // Opens a TUM folder: reads the lists, associates RGB with depth (associate.py semantics)
-  // and picks the camera (options.camera > camera.json > folder name > ROS default).
-  // Throws InputError naming the folder or file: missing folder, missing rgb.txt/depth.txt,
-  // bad list lines, bad camera.json, bad groundtruth.txt or masks.txt, no associated frame.
+  // and picks the camera (ChooseCamera: the config's camera.source, else camera.json, else
+  // the camera the folder's name announces). Throws InputError naming the folder or file:
+  // missing folder, missing rgb.txt/depth.txt, bad list lines, no camera to be found, bad
+  // camera.json, bad groundtruth.txt or masks.txt, no associated frame.
   explicit TumDataset(const std::string& folder, const TumDatasetOptions& options = {});
 
   // Associated RGB-D frames, in RGB time order.
@@ -62,9 +63,12 @@ class TumDataset {
   // The convex part of every image Load() returns that holds image data: without the black
   // border undistortion leaves (empty = the whole image, when there is no undistortion).
   const ImageArea& image_area() const;
-  // PNG value per metre used for depth (camera.json "depth_factor", else the option, else by
-  // folder name).
+  // PNG value per metre used for depth (dataset.depth_factor, else camera.json's, else the
+  // chosen camera's).
   double depth_factor() const;
+  // Where the camera and the depth factor came from, in words (for run.json).
+  const std::string& camera_origin() const;
+  const std::string& depth_factor_origin() const;
 
   // Frame i, undistorted when the option asks and the camera has distortion (RGB bilinear,
   // depth nearest). Throws InputError naming the PNG when it is missing, unreadable, of the
@@ -107,6 +111,7 @@ class TumDataset {
   Camera raw_camera_;
   Camera camera_;
   double depth_factor_ = 5000.0;
+  std::string camera_origin_, depth_factor_origin_;
   bool remap_ = false;
   ImageArea image_area_;
   cv::Mat linear_map1_, linear_map2_;  // CV_16SC2 + CV_16UC1 fixed-point maps, bilinear

@@ -1,23 +1,17 @@
 #include "eval/metrics_report.h"
 
-#include <cstdio>
+#include "core/number_text.h"
 
 namespace dynvo {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string Line(const char* format, const std::string& name, double value, const char* unit) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof(buffer), format, name.c_str(), value, unit);
-  return buffer;
-}
-
 std::string StatisticsLines(const std::string& prefix, const ErrorStatistics& s, const char* unit) {
   std::string out;
   const std::pair<const char*, double> rows[] = {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
                                                  {"std", s.std},   {"min", s.min},   {"max", s.max}};
-  for (const auto& [name, value] : rows) out += Line("%s %.6f %s\n", prefix + "." + name, value, unit);
+  for (const auto& [name, value] : rows) out += prefix + "." + name + " " + FixedText(value, 6) + " " + unit + "\n";
   return out;
 }
 
@@ -74,22 +68,17 @@ nlohmann::json AteJson(const AteResult& result, const AteOptions& options) {
 
 std::string RpePairsCsv(const RpeResult& result) {
   std::string out = "stamp_est_0,stamp_est_1,stamp_gt_0,stamp_gt_1,trans_error_m,rot_error_deg\n";
-  char buffer[256];
-  for (const RpePair& p : result.pairs) {
-    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.6f,%.6f,%.9f,%.9f\n", p.stamp_est_0, p.stamp_est_1, p.stamp_gt_0,
-                  p.stamp_gt_1, p.trans_error_m, p.rot_error_rad * 180.0 / kPi);
-    out += buffer;
-  }
+  for (const RpePair& p : result.pairs)
+    out += StampText(p.stamp_est_0) + "," + StampText(p.stamp_est_1) + "," + StampText(p.stamp_gt_0) + "," +
+           StampText(p.stamp_gt_1) + "," + FixedText(p.trans_error_m, 9) + "," +
+           FixedText(p.rot_error_rad * 180.0 / kPi, 9) + "\n";
   return out;
 }
 
 std::string AtePairsCsv(const AteResult& result) {
   std::string out = "stamp_gt,stamp_est,trans_error_m\n";
-  char buffer[128];
-  for (const AtePair& p : result.pairs) {
-    std::snprintf(buffer, sizeof(buffer), "%.6f,%.6f,%.9f\n", p.stamp_gt, p.stamp_est, p.trans_error_m);
-    out += buffer;
-  }
+  for (const AtePair& p : result.pairs)
+    out += StampText(p.stamp_gt) + "," + StampText(p.stamp_est) + "," + FixedText(p.trans_error_m, 9) + "\n";
   return out;
 }
 

@@ -57,6 +57,27 @@ void RequireOverlap(const std::vector<double>& stamps_gt, const std::vector<doub
       "to the same sequence?");
 }
 
+// A delta in path length or rotation needs an estimate that moves at least that much.
+void RequireMotion(const std::vector<double>& index, const RpeOptions& options) {
+  if (options.unit == DeltaUnit::kSeconds || options.unit == DeltaUnit::kFrames || index.back() >= options.delta)
+    return;
+  throw InputError("the estimated trajectory moves " + FormatNumber(index.back()) + " " + DeltaUnitName(options.unit) +
+                   " in all, less than the delta " + FormatNumber(options.delta) + " " + DeltaUnitName(options.unit) +
+                   (index.back() == 0 ? ": it is motionless" : "") + "; no pose pair is that far apart");
+}
+
+// A delta below half the median spacing of the poses pairs nearly every pose with itself: an
+// RPE of zero that means nothing.
+void RequireDeltaAboveSpacing(const std::vector<double>& index, const RpeOptions& options) {
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < index.size(); ++k) steps.push_back(index[k] - index[k - 1]);
+  const double spacing = Median(steps);
+  if (!(options.delta < 0.5 * spacing)) return;
+  throw InputError("--delta " + FormatNumber(options.delta) + " " + DeltaUnitName(options.unit) +
+                   " pairs every estimated pose with itself: the poses are " + FormatNumber(spacing) + " " +
+                   DeltaUnitName(options.unit) + " apart (median); use a delta of at least that");
+}
+
 }  // namespace
 
 void RpeOptions::Check() const {
@@ -153,6 +174,8 @@ RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptio
   };
   if (options.fixed_delta) {
     const std::vector<double> index = DeltaIndex(est, stamps_est, options.unit);
+    RequireMotion(index, options);
+    RequireDeltaAboveSpacing(index, options);
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t j = closest(index, index[i] + options.delta);
       if (j != n - 1) compare(i, j);

@@ -1,10 +1,11 @@
 #include "odometry/odometry_config.h"
 
 #include <fstream>
+#include <sstream>
 
 #include "core/config_registry.h"
 #include "core/error.h"
-#include "dataset/tum_camera.h"
+#include "core/json_file.h"
 
 namespace dynvo {
 
@@ -33,7 +34,7 @@ OdometryConfig::OdometryConfig() {
 
 void OdometryConfig::Check() const {
   dataset.Check();
-  if (camera.source == "custom") camera.custom.Check("camera (source \"custom\")");
+  camera.Check();
   klt.Check();
   homography.Check();
   dynamic_mask.Check();
@@ -67,39 +68,13 @@ std::string ToString(MaskSourceKind kind) {
   return "difference";
 }
 
-std::optional<Camera> OdometryConfig::CameraOverride() const {
-  if (camera.source == "auto") return std::nullopt;
-  if (camera.source == "custom") return camera.custom;
-  if (camera.source == "fr1") return TumCameraForSequence("freiburg1");
-  if (camera.source == "fr2") return TumCameraForSequence("freiburg2");
-  if (camera.source == "fr3") return TumCameraForSequence("freiburg3");
-  return TumCameraForSequence("");  // ros_default
-}
-
 TumDatasetOptions OdometryConfig::ReaderOptions() const {
   TumDatasetOptions options = dataset;
-  options.camera = CameraOverride();
+  options.camera = camera;
   return options;
 }
 
 namespace {
-
-void BindCameraKeys(CameraConfig* c, ConfigRegistry* r) {
-  r->BindChoice(
-      "camera.source", {"auto", "fr1", "fr2", "fr3", "ros_default", "custom"}, [c] { return c->source; },
-      [c](const std::string& s) { c->source = s; },
-      "intrinsics: auto = camera.json, else TUM camera by folder name (freiburg1/2/3), else ROS default");
-  r->Bind("camera.width", &c->custom.width, "pixels (source \"custom\")");
-  r->Bind("camera.height", &c->custom.height, "pixels (source \"custom\")");
-  r->Bind("camera.fx", &c->custom.fx, "pixels (source \"custom\")");
-  r->Bind("camera.fy", &c->custom.fy, "pixels (source \"custom\")");
-  r->Bind("camera.cx", &c->custom.cx, "pixels (source \"custom\")");
-  r->Bind("camera.cy", &c->custom.cy, "pixels (source \"custom\")");
-  const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
-  for (int i = 0; i < 5; ++i)
-    r->Bind(std::string("camera.") + names[i], &c->custom.distortion[i],
-            "distortion coefficient (OpenCV order, source \"custom\")");
-}
 
 // Keys of earlier versions: where they went, or why they are gone.
 void NoteMovedKeys(ConfigRegistry* r) {
@@ -168,7 +143,7 @@ void NoteMovedKeys(ConfigRegistry* r) {
 
 void BindConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   BindConfigKeys("dataset", &c->dataset, r);
-  BindCameraKeys(&c->camera, r);
+  BindConfigKeys("camera", &c->camera, r);
   r->BindChoice(
       "mask_source", {"none", "difference", "ground_truth", "detector"}, [c] { return ToString(c->mask_source); },
       [c](const std::string& s) {
@@ -198,15 +173,11 @@ OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std
   ConfigRegistry registry;
   BindConfigKeys(&config, &registry);
   if (!path.empty()) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open config file");
-    nlohmann::json json;
-    try {
-      json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(path + ": not valid JSON: " + e.what());
-    }
-    registry.Apply(json, path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    registry.Apply(ParseJsonStrictly(text.str(), path), path);
   }
   for (const std::string& assignment : overrides) registry.ApplyOverride(assignment);
   try {

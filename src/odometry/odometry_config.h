@@ -27,13 +27,6 @@ namespace dynvo {
 
 class ConfigRegistry;
 
-// Where the intrinsics come from: "auto" (camera.json in the sequence, else the TUM camera
-// named by the folder, else the ROS default), a TUM preset, or the numbers given here.
-struct CameraConfig {
-  std::string source = "auto";  // auto | fr1 | fr2 | fr3 | ros_default | custom
-  Camera custom;                // used when source == "custom"
-};
-
 // Where frame t's dynamic mask comes from (pipeline/mask_source.h).
 enum class MaskSourceKind {
   kNone,         // no mask: the baseline, everything else identical
@@ -57,7 +50,7 @@ struct OdometryConfig {
   OdometryConfig();
 
   TumDatasetOptions dataset;                                 // "dataset.*"
-  CameraConfig camera;                                       // "camera.*"
+  CameraChoice camera;                                       // "camera.*"
   MaskSourceKind mask_source = MaskSourceKind::kDifference;  // "mask_source"
   KltOptions klt;                                            // the KLT tracks of the ego-motion (no keys)
   HomographyOptions homography;                              // "homography.*": the ego-motion homography
@@ -74,9 +67,7 @@ struct OdometryConfig {
 
   // Throws InputError naming the first key whose value is out of range.
   void Check() const;
-  // The intrinsics override for the dataset reader (nullopt for "auto").
-  std::optional<Camera> CameraOverride() const;
-  // The dataset reader's options: `dataset` with CameraOverride() as its camera.
+  // The dataset reader's options: `dataset` with `camera` as its camera choice.
   TumDatasetOptions ReaderOptions() const;
 };
 

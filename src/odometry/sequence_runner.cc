@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <set>
 
+#include "core/build_info.h"
 #include "core/error.h"
+#include "core/output_file.h"
 #include "dataset/trajectory_io.h"
 #include "odometry/debug_panels_writer.h"
 #include "odometry/frame_loader.h"
@@ -26,6 +27,15 @@ namespace fs = std::filesystem;
 
 constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json"};
 
+// With --force, the earlier run's outputs go first, so that none of them outlives it.
+void RemoveEarlierRun(const fs::path& dir) {
+  std::error_code ec;
+  for (const std::string name : {"trajectory.txt", "timing.csv", "run.json", "run.json.tmp", "debug"}) {
+    fs::remove_all(dir / name, ec);
+    if (ec) throw InputError((dir / name).string() + ": cannot remove the earlier run's output: " + ec.message());
+  }
+}
+
 void PrepareOutputDir(const RunRequest& request) {
   if (request.out_dir.empty()) throw InputError("--out: an output folder is required");
   const fs::path dir(request.out_dir);
@@ -34,6 +44,7 @@ void PrepareOutputDir(const RunRequest& request) {
     for (const char* name : kOutputs)
       if (fs::exists(dir / name))
         throw InputError((dir / name).string() + ": exists from an earlier run; pass --force to overwrite");
+  if (request.force && fs::is_directory(dir)) RemoveEarlierRun(dir);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(request.out_dir + ": cannot create folder: " + ec.message());
@@ -120,7 +131,8 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
                          size_t count) {
   const fs::path out(request.out_dir);
   nlohmann::json report;
-  report["dynvo_version"] = "0.1.0";
+  report["dynvo_version"] = DynvoVersion();
+  report["dynvo_commit"] = BuildCommit();
   report["dataset"] = {{"folder", dataset.folder()},
                        {"name", dataset.name()},
                        {"frames_associated", dataset.size()},
@@ -129,7 +141,10 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
                        {"has_groundtruth", dataset.has_groundtruth()},
                        {"has_masks", dataset.has_masks()},
                        {"camera", CameraJson(dataset.camera())},
-                       {"depth_factor", dataset.depth_factor()}};
+                       {"sensor_camera", CameraJson(dataset.raw_camera())},
+                       {"camera_source", dataset.camera_origin()},
+                       {"depth_factor", dataset.depth_factor()},
+                       {"depth_factor_source", dataset.depth_factor_origin()}};
   report["config_file"] = request.config_path;
   report["overrides"] = request.overrides;
   report["config"] = OdometryConfigToJson(config);
@@ -138,15 +153,22 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
   return report;
 }
 
+// How the frame loop ended, and why when it did not complete.
+struct RunEnd {
+  RunStatus status = RunStatus::kCompleted;
+  std::string message;  // the error, or what interrupted the run
+};
+
 // run.json's results: status, counts, times, memory and mask quality.
-void AddRunResults(const RunTally& tally, double wall_s, const std::string& failure, int threads, bool evaluate_masks,
+void AddRunResults(const RunTally& tally, double wall_s, const RunEnd& end, int threads, bool evaluate_masks,
                    nlohmann::json* out) {
   nlohmann::json& report = *out;
   double processing_total = 0;
   for (double v : tally.processing) processing_total += v;
   const size_t done = tally.processing.size();
-  report["status"] = failure.empty() ? "completed" : "failed";
-  if (!failure.empty()) report["error"] = failure;
+  report["status"] = ToString(end.status);
+  if (end.status == RunStatus::kFailed) report["error"] = end.message;
+  if (end.status == RunStatus::kInterrupted) report["interrupted"] = end.message;
   report["counts"] = {{"frames", done},
                       {"tracking_states", tally.states},
                       {"keyframes", tally.keyframes},
@@ -192,17 +214,22 @@ void AddRunResults(const RunTally& tally, double wall_s, const std::string& fail
 }
 
 // Feeds every frame to `process`, frame t once frame t+1 is loaded (the triplet's backward
-// detection and the look-ahead use it), and frame t first when frame t+1 fails to load.
-// Returns the failure that ended the run, or "" when every frame was processed.
-std::string ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
-                          const RunTally& tally) {
+// detection and the look-ahead use it), and frame t first when frame t+1 fails to load or a
+// stop is requested. Returns how the loop ended.
+RunEnd ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFrame&, const RgbdFrame*)>& process,
+                     const std::function<bool()>& stop_requested, const RunTally& tally) {
   try {
     std::optional<LoadedFrame> pending;
     for (;;) {
+      if (stop_requested && stop_requested()) {
+        if (pending) process(*pending, nullptr);
+        return {RunStatus::kInterrupted,
+                "stopped by a signal after " + std::to_string(tally.processing.size()) + " frames"};
+      }
       std::optional<LoadedFrame> loaded;
       try {
         loaded = loader->Next();
-      } catch (const InputError&) {
+      } catch (const std::exception&) {
         if (pending) process(*pending, nullptr);
         throw;
       }
@@ -212,15 +239,28 @@ std::string ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFr
     }
     if (pending) process(*pending, nullptr);
   } catch (const InputError& e) {
-    return e.what();
+    return {RunStatus::kFailed, e.what()};
   } catch (const std::exception& e) {
     // An internal failure must not lose what was computed: record it like a load error.
-    return "internal error after frame " + std::to_string(tally.processing.size()) + ": " + e.what();
+    return {RunStatus::kFailed,
+            "internal error after frame " + std::to_string(tally.processing.size()) + ": " + e.what()};
   }
-  return "";
+  return {};
 }
 
 }  // namespace
+
+const char* ToString(RunStatus status) {
+  switch (status) {
+    case RunStatus::kCompleted:
+      return "completed";
+    case RunStatus::kFailed:
+      return "failed";
+    case RunStatus::kInterrupted:
+      return "interrupted";
+  }
+  return "failed";
+}
 
 nlohmann::json RunOdometry(const RunRequest& request) {
   const OdometryConfig config = LoadOdometryConfig(request.config_path, request.overrides);
@@ -252,8 +292,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   FrameLoader loader(dataset, count, evaluate_masks, executor);
   const DebugPanelsWriter debug_panels((out / "debug").string(), debug_frames);
   TimingCsvWriter timing((out / "timing.csv").string());
-  std::ofstream trajectory((out / "trajectory.txt").string(), std::ios::trunc);
-  if (!trajectory) ThrowFileError((out / "trajectory.txt").string(), 0, "cannot write file");
+  AppendedFile trajectory((out / "trajectory.txt").string());
   ProgressMeter progress(count, request.quiet);
   RunTally tally;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -264,23 +303,26 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     record.times.load_ms = current.load_ms;
     if (evaluate_masks) record.mask_quality = CompareMasks(processed.stages.mask.mask, current.truth_mask);
     debug_panels.OnFrame(current.frame, processed);
-    trajectory << FormatTrajectory({{record.stamp, record.world_from_camera}});
-    trajectory.flush();
+    trajectory.Append(FormatTrajectory({{record.stamp, record.world_from_camera}}));
     timing.Write(record);
     tally.Add(record);
     progress.Update(tally.processing.size());
   };
 
-  const std::string failure = ProcessFrames(&loader, process, tally);
+  const RunEnd end = ProcessFrames(&loader, process, request.stop_requested, tally);
   progress.Finish(tally.processing.size());
 
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  AddRunResults(tally, wall_s, failure, threads, evaluate_masks, &report);
-  const std::string report_path = (out / "run.json").string();
-  std::ofstream report_file(report_path, std::ios::trunc);
-  if (!report_file) ThrowFileError(report_path, 0, "cannot write file");
-  report_file << report.dump(2) << '\n';
-  if (!failure.empty()) throw InputError(failure);
+  AddRunResults(tally, wall_s, end, threads, evaluate_masks, &report);
+  // Paths may hold any bytes: those that are not UTF-8 are written as U+FFFD, never a throw.
+  try {
+    WriteFileAtomically((out / "run.json").string(),
+                        report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  } catch (const InputError& e) {
+    if (end.status != RunStatus::kFailed) throw;
+    throw InputError(end.message + "; and " + e.what());  // the first failure first
+  }
+  if (end.status == RunStatus::kFailed) throw InputError(end.message);
   return report;
 }
 

@@ -1,9 +1,10 @@
 #include "odometry/timing_csv.h"
 
-#include <cstdio>
+#include <sstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace dynvo {
 namespace {
@@ -19,11 +20,7 @@ std::string CsvText(const std::string& text) {
   return out + "\"";
 }
 
-std::string Fixed(double v, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, v);
-  return buffer;
-}
+std::string Fixed(double v, int decimals) { return FixedText(v, decimals); }
 
 }  // namespace
 
@@ -36,38 +33,34 @@ const char* TimingCsvWriter::Header() {
          "detector_status,local_ba_converged";
 }
 
-TimingCsvWriter::TimingCsvWriter(const std::string& path) : path_(path), out_(path, std::ios::trunc) {
-  if (!out_) ThrowFileError(path, 0, "cannot write file");
-  out_ << Header() << '\n';
-  out_.flush();
-}
+TimingCsvWriter::TimingCsvWriter(const std::string& path) : file_(path) { file_.Append(std::string(Header()) + "\n"); }
 
 void TimingCsvWriter::Write(const FrameRecord& r) {
   const StageTimes& t = r.times;
-  out_ << r.index << ',' << Fixed(r.stamp, 6) << ',' << Fixed(t.load_ms, 3) << ',' << Fixed(t.dynamic_mask_ms, 3) << ','
-       << Fixed(t.features_ms, 3) << ',' << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ','
-       << Fixed(t.pose_ms, 3) << ',' << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ','
-       << Fixed(t.processing_ms, 3) << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed
-       << ',' << r.features_readmitted << ',' << Fixed(r.dynamic_ratio, 5) << ','
-       << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ',' << (r.mask_ok ? 1 : 0)
-       << ',' << CsvText(r.mask_note) << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ','
-       << r.num_matches << ',' << r.num_inliers << ',' << r.new_points_rejected << ',' << r.coherent_motion_rejected
-       << ',' << (r.keyframe ? 1 : 0) << ',';
+  std::ostringstream row;
+  row << r.index << ',' << StampText(r.stamp) << ',' << Fixed(t.load_ms, 3) << ',' << Fixed(t.dynamic_mask_ms, 3) << ','
+      << Fixed(t.features_ms, 3) << ',' << Fixed(t.filter_ms, 3) << ',' << Fixed(t.match_ms, 3) << ','
+      << Fixed(t.pose_ms, 3) << ',' << Fixed(t.map_ms, 3) << ',' << Fixed(t.local_ba_ms, 3) << ','
+      << Fixed(t.processing_ms, 3) << ',' << r.features_total << ',' << r.features_kept << ',' << r.features_removed
+      << ',' << r.features_readmitted << ',' << Fixed(r.dynamic_ratio, 5) << ','
+      << (r.mask_threshold >= 0 ? std::to_string(r.mask_threshold) : std::string()) << ',' << (r.mask_ok ? 1 : 0) << ','
+      << CsvText(r.mask_note) << ',' << ToString(r.state) << ',' << CsvText(r.tracking_note) << ',' << r.num_matches
+      << ',' << r.num_inliers << ',' << r.new_points_rejected << ',' << r.coherent_motion_rejected << ','
+      << (r.keyframe ? 1 : 0) << ',';
   if (r.mask_quality) {
-    out_ << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5) << ','
-         << Fixed(r.mask_quality->Iou(), 5);
+    row << Fixed(r.mask_quality->Precision(), 5) << ',' << Fixed(r.mask_quality->Recall(), 5) << ','
+        << Fixed(r.mask_quality->Iou(), 5);
   } else {
-    out_ << ",,";
+    row << ",,";
   }
   const bool judged = r.people >= 0 && r.people_moving >= 0;
-  out_ << ',' << (r.people >= 0 ? std::to_string(r.people) : std::string()) << ','
-       << (r.detection_age >= 0 ? std::to_string(r.detection_age) : std::string()) << ','
-       << (judged ? std::to_string(r.people_moving) : std::string()) << ','
-       << (judged ? std::to_string(r.people - r.people_moving) : std::string()) << ','
-       << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << ','
-       << (r.local_ba_converged >= 0 ? std::to_string(r.local_ba_converged) : std::string()) << '\n';
-  out_.flush();
-  if (!out_) ThrowFileError(path_, 0, "write failed");
+  row << ',' << (r.people >= 0 ? std::to_string(r.people) : std::string()) << ','
+      << (r.detection_age >= 0 ? std::to_string(r.detection_age) : std::string()) << ','
+      << (judged ? std::to_string(r.people_moving) : std::string()) << ','
+      << (judged ? std::to_string(r.people - r.people_moving) : std::string()) << ','
+      << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << ','
+      << (r.local_ba_converged >= 0 ? std::to_string(r.local_ba_converged) : std::string()) << '\n';
+  file_.Append(row.str());
 }
 
 }  // namespace dynvo

@@ -1,9 +1,9 @@
 #pragma once
 // timing.csv: one row per frame, written as frames finish so a failed run keeps its rows.
 
-#include <fstream>
 #include <string>
 
+#include "core/output_file.h"
 #include "odometry/frame_record.h"
 
 namespace dynvo {
@@ -12,15 +12,15 @@ class TimingCsvWriter {
  public:
   // Creates (truncates) the file and writes the header. Throws InputError when it cannot.
   explicit TimingCsvWriter(const std::string& path);
-  // Appends the row of one frame and flushes it.
+  // Appends the row of one frame and flushes it. Throws InputError naming the file when the
+  // write fails.
   void Write(const FrameRecord& record);
 
   // The column names, in order.
   static const char* Header();
 
  private:
-  std::string path_;
-  std::ofstream out_;
+  AppendedFile file_;
 };
 
 }  // namespace dynvo

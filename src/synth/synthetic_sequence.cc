@@ -10,7 +10,8 @@
 
 #include "core/error.h"
 #include "core/executor.h"
-#include "dataset/tum_camera.h"
+#include "core/number_text.h"
+#include "dataset/known_cameras.h"
 #include "synth/people_labels.h"
 #include "synth/rolling_shutter.h"
 #include "synth/tum_writer.h"
@@ -18,12 +19,28 @@
 namespace dynvo {
 
 Camera TumIntrinsics(const std::string& name, const std::string& key) {
-  if (name == "fr1") return TumCameraForSequence("freiburg1");
-  if (name == "fr2") return TumCameraForSequence("freiburg2");
-  if (name == "fr3") return TumCameraForSequence("freiburg3");
-  if (name == "ros") return TumCameraForSequence("");
+  if (name == "fr1" || name == "fr2" || name == "fr3") return KnownCameraByName(name)->camera;
+  if (name == "ros") return KnownCameraByName("ros_default")->camera;
   throw InputError(key + " must be one of fr1, fr2, fr3, ros, got '" + name + "'");
 }
+
+namespace {
+
+// A camera the renderer can draw: the principal point inside the image, a field of view
+// between 0.5 and 160 degrees across (focal length between 0.09 and 100 image widths).
+void CheckPinhole(const Camera& camera) {
+  const auto fov_ok = [](double focal, int size) { return focal >= 0.09 * size && focal <= 100.0 * size; };
+  if (!fov_ok(camera.fx, camera.width) || !fov_ok(camera.fy, camera.height))
+    throw InputError("synth.camera: fx " + ShortText(camera.fx) + " and fy " + ShortText(camera.fy) +
+                     " must give a field of view of 0.5 to 160 degrees (0.09 to 100 times the image's width and "
+                     "height in pixels)");
+  if (!(camera.cx >= 0 && camera.cx <= camera.width - 1) || !(camera.cy >= 0 && camera.cy <= camera.height - 1))
+    throw InputError("synth.camera: the principal point (" + ShortText(camera.cx) + ", " + ShortText(camera.cy) +
+                     ") must lie inside the " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                     " image");
+}
+
+}  // namespace
 
 SyntheticSequenceOptions::SyntheticSequenceOptions() : camera(TumIntrinsics("fr3", "")) {}
 
@@ -34,6 +51,7 @@ void SyntheticSequenceOptions::Check() const {
   if (camera.HasDistortion())
     throw InputError("synth.camera: distortion must be zero (synthetic frames are rendered pinhole)");
   if (camera.width < 16 || camera.height < 16) throw InputError("synth.camera: width and height must be >= 16");
+  CheckPinhole(camera);
   RequireOption(motion_blur_samples >= 3 && motion_blur_samples % 2 == 1, "synth", "motion_blur_samples",
                 "odd and >= 3", motion_blur_samples);
   RequireOption(exposure_s > 0 && exposure_s < 1.0 / fps, "synth", "exposure_s", "in (0, 1/fps)", exposure_s);

@@ -1,13 +1,13 @@
 #include "synth/tum_writer.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "dataset/camera_file.h"
 
 namespace dynvo {
@@ -45,11 +45,7 @@ void PrepareOutputFolder(const std::string& folder, bool force) {
   if (!fs::is_directory(fs::path(folder) / "rgb")) throw InputError(folder + ": cannot create output folder");
 }
 
-std::string FormatStamp(double stamp) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.6f", stamp);
-  return buffer;
-}
+std::string FormatStamp(double stamp) { return FixedText(stamp, 6); }
 
 double RoundStamp(double stamp) { return std::stod(FormatStamp(stamp)); }
 

@@ -1,9 +1,12 @@
 // Runs the dynvo-cli executable: every bad input gets one clear line on stderr and a
 // non-zero exit; a good run writes its three outputs.
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -108,9 +111,42 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
   ExpectOneLineError(RunTool(dir, "dynvo-cli", "run --dataset " + Quote((dir.path() / "bad_seq").string()) + out),
                      "rgb.txt:");
 
+  const std::string twice = dir.Write("twice.json", R"({"features": {"num_features": 900, "num_features": 1200}})");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --config " + Quote(twice)),
+                     "twice.json: key 'features.num_features' appears twice");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_featurs=10"),
+                     "did you mean 'features.num_features'?");
+
+  // Usage errors: one line, the closest valid name, exit code 2.
+  for (const auto& [args, hint] : std::vector<std::pair<std::string, std::string>>{
+           {"run --datset " + Quote(seq) + out, "did you mean '--dataset'?"},
+           {"rnu --dataset " + Quote(seq) + out, "did you mean 'run'?"},
+           {"config-keys --markdwon", "did you mean '--markdown'?"}}) {
+    const ToolOutcome usage = RunTool(dir, "dynvo-cli", args);
+    EXPECT_EQ(usage.exit_code, 2) << args;
+    EXPECT_EQ(std::count(usage.err.begin(), usage.err.end(), '\n'), 1) << usage.err;
+    EXPECT_NE(usage.err.find(hint), std::string::npos) << args << ": " << usage.err;
+  }
   // Usage errors come from the argument parser: non-zero exit, no crash.
   EXPECT_NE(RunTool(dir, "dynvo-cli", "run --dataset " + Quote(seq)).exit_code, 0);
   EXPECT_NE(RunTool(dir, "dynvo-cli", "").exit_code, 0);
+}
+
+TEST(DynvoCli, EveryProgramTellsItsVersionAndCommit) {
+  test::TempDir dir;
+  for (const char* program : {"dynvo-cli", "rpe", "ate", "dynvo-synth", "dynvo-insert-people", "dynvo-montage"}) {
+    const ToolOutcome o = RunTool(dir, program, "--version");
+    EXPECT_EQ(o.exit_code, 0) << program << ": " << o.err;
+    EXPECT_EQ(o.out.rfind(std::string(program) + " 0.1.0 (commit ", 0), 0u) << program << ": " << o.out;
+  }
+  // run.json records the same.
+  const std::string seq = MakeSequence(dir);
+  const std::string out = (dir.path() / "out").string();
+  ASSERT_EQ(RunTool(dir, "dynvo-cli", "run --quiet --dataset " + Quote(seq) + " --out " + Quote(out)).exit_code, 0);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/run.json"));
+  const std::string version = RunTool(dir, "dynvo-cli", "--version").out;
+  EXPECT_EQ(version, "dynvo-cli " + report["dynvo_version"].get<std::string>() + " (commit " +
+                         report["dynvo_commit"].get<std::string>() + ")\n");
 }
 
 TEST(DynvoCli, ConfigKeysListsEveryKey) {

@@ -44,6 +44,8 @@ TEST(ImageList, ErrorsNameFileAndLine) {
   EXPECT_NE(ParseError(good + "1.0 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"), std::string::npos);
   EXPECT_NE(ParseError(good + "0.9 rgb/b.png\n").find("rgb.txt:3: timestamps must strictly"), std::string::npos);
   EXPECT_EQ(ParseError(good + "1.000001 rgb/b.png\n"), "");
+  EXPECT_NE(ParseError(good + "1e180 rgb/b.png\n").find("rgb.txt:3: timestamp 1e180 is not a time in seconds"),
+            std::string::npos);
 }
 
 TEST(ImageList, MissingFileIsNamed) {

@@ -50,6 +50,35 @@ TEST(ParseTrajectory, ErrorsNameFileAndLine) {
   EXPECT_EQ(ParseError(good), "");
 }
 
+TEST(ParseTrajectory, AbsurdStampsAndTranslationsAreErrorsNotInfinities) {
+  const std::string good = "1 0 0 0 0 0 0 1\n";
+  // Nanoseconds, or 1e180: not seconds.
+  EXPECT_EQ(ParseError(good + "1700000000000000000 0 0 0 0 0 0 1\n"),
+            "gt.txt:2: timestamp 1700000000000000000 is not a time in seconds (1e12 or more; nanoseconds? divide by "
+            "1e9): stamps are seconds");
+  EXPECT_NE(ParseError(good + "1e180 0 0 0 0 0 0 1\n").find("gt.txt:2: timestamp 1e180"), std::string::npos);
+  // A translation of 1e308 would make every squared error infinite.
+  EXPECT_EQ(ParseError(good + "2 1e308 0 0 0 0 0 1\n"),
+            "gt.txt:2: column 2 is 1e308: a translation beyond 1e9 m is no camera's (a diverged estimate?)");
+  EXPECT_EQ(ParseError(good + "2 0 0 0 1e300 0 0 1\n"), "gt.txt:2: quaternion too large to normalise");
+  EXPECT_EQ(ParseError(good + "2 999999999 0 0 0 0 0 1\n"), "");
+}
+
+TEST(WriteTrajectory, StampsCloserThanAMicrosecondStayDistinct) {
+  Trajectory in(2);
+  in[0].stamp = 100.0000001;
+  in[1].stamp = 100.0000002;
+  const Trajectory out = ParseTrajectory(FormatTrajectory(in), "written");
+  ASSERT_EQ(out.size(), 2u);  // 6 decimals would have merged them into one pose
+  EXPECT_EQ(out[0].stamp, in[0].stamp);
+  EXPECT_EQ(out[1].stamp, in[1].stamp);
+  // A diverged pose is written whole, on its own line: never cut, never merged with the next.
+  in[0].world_from_camera.translation() = Eigen::Vector3d(1e200, 0, 0);
+  const std::string text = FormatTrajectory(in);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+  EXPECT_GT(text.find('\n'), 200u);
+}
+
 TEST(ParseTrajectory, RepeatedStampKeepsTheLastLineLikeTheTumScripts) {
   // The real fr2_desk groundtruth repeats 1311868229.5760 on consecutive lines; the TUM
   // scripts read lines into a dict keyed by stamp, so the later line wins.

@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "dataset/image_list.h"
-#include "dataset/tum_camera.h"
+#include "dataset/known_cameras.h"
 #include "dataset/tum_dataset.h"
 #include "support/shared_data.h"
 

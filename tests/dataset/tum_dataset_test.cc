@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "dataset/camera_file.h"
-#include "dataset/tum_camera.h"
+#include "dataset/known_cameras.h"
 #include "support/temp_dir.h"
 #include "tum_test_folder.h"
 
@@ -48,11 +48,11 @@ TEST(TumDatasetOptions, CheckNamesTheKey) {
   options = {};
   options.depth_factor = -5000;
   EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }),
-                       "dataset.depth_factor must be >= 0 (PNG value per metre; 0: by folder name), got -5000"));
+                       "dataset.depth_factor must be >= 0 (PNG value per metre; 0: by the camera), got -5000"));
   options = {};
-  options.camera = Camera();
-  options.camera->fx = 0;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }), "dataset.camera"));
+  options.camera.source = "custom";
+  options.camera.custom.fx = 0;
+  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }), "camera (source \"custom\")"));
 }
 
 TEST(TumDataset, LoadsAssociatedFramesWithDepthInMetres) {
@@ -91,22 +91,27 @@ TEST(TumDataset, LoadsAssociatedFramesWithDepthInMetres) {
   EXPECT_THROW(dataset.Load(3), std::out_of_range);
 }
 
-TEST(TumDataset, DepthFactorFromOptionsOrCameraFile) {
+TEST(TumDataset, DepthFactorFromOptionsElseCameraFile) {
   TempDir dir;
   const TumTestFolder seq = WriteTumTestFolder(dir, {});
+  EXPECT_EQ(TumDataset(seq.folder).depth_factor_origin(), "default (5000)");
+  WriteCameraFile(seq.folder + "/camera.json", Camera(), 10000.0);
+  const TumDataset from_file(seq.folder);
+  EXPECT_EQ(from_file.depth_factor(), 10000.0);
+  EXPECT_FLOAT_EQ(from_file.Load(0).depth.at<float>(5, 5), 0.5f);
+  EXPECT_EQ(from_file.depth_factor_origin(), "camera.json (" + seq.folder + "/camera.json)");
+  // The config's value is the user's last word: it wins over the file.
   TumDatasetOptions options;
   options.depth_factor = 1000;
-  EXPECT_FLOAT_EQ(TumDataset(seq.folder, options).Load(0).depth.at<float>(5, 5), 5.0f);
-  // camera.json describes how its folder's PNGs were written: its depth_factor wins.
-  WriteCameraFile(seq.folder + "/camera.json", Camera(), 10000.0);
-  const TumDataset dataset(seq.folder, options);
-  EXPECT_EQ(dataset.depth_factor(), 10000.0);
-  EXPECT_FLOAT_EQ(dataset.Load(0).depth.at<float>(5, 5), 0.5f);
+  const TumDataset from_options(seq.folder, options);
+  EXPECT_FLOAT_EQ(from_options.Load(0).depth.at<float>(5, 5), 5.0f);
+  EXPECT_EQ(from_options.depth_factor_origin(), "config: dataset.depth_factor");
 }
 
 TEST(TumDataset, DepthFactorByFolderNameWhenNotGiven) {
   TempDir dir;
   TumTestFolderSpec spec;
+  spec.camera_json = false;
   spec.name = "rgbd_dataset_freiburg2_desk";
   const TumTestFolder fr2 = WriteTumTestFolder(dir, spec);
   spec.name = "rgbd_dataset_freiburg1_desk";
@@ -232,15 +237,18 @@ TEST(TumDataset, AcceptsGrayAndBgraRgbImages) {
   EXPECT_EQ(frame.bgr.at<cv::Vec3b>(10, 10), cv::Vec3b(10, 20, 30));
 }
 
-TEST(TumDataset, CameraPrecedenceOptionsThenFileThenName) {
+TEST(TumDataset, CameraPrecedenceConfigThenFileThenName) {
   TempDir dir;
   TumTestFolderSpec spec;
   spec.name = "rgbd_dataset_freiburg3_walking_xyz";
+  spec.camera_json = false;
   spec.frames = 1;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
   TumDatasetOptions no_undistort;
   no_undistort.undistort = false;
-  EXPECT_EQ(TumDataset(seq.folder).camera().fx, 535.4);  // from the name
+  const TumDataset from_name(seq.folder);
+  EXPECT_EQ(from_name.camera().fx, 535.4);
+  EXPECT_EQ(from_name.camera_origin(), "folder name: TUM RGB-D freiburg3 Kinect (camera.source \"fr3\")");
 
   Camera file_camera;
   file_camera.fx = 600;
@@ -250,14 +258,20 @@ TEST(TumDataset, CameraPrecedenceOptionsThenFileThenName) {
   EXPECT_EQ(from_file.camera().fx, 600.0);
   EXPECT_EQ(from_file.camera().distortion, file_camera.distortion);
   EXPECT_EQ(from_file.depth_factor(), 5000.0);
+  EXPECT_EQ(from_file.camera_origin(), "camera.json (" + seq.folder + "/camera.json)");
 
-  Camera option_camera;
-  option_camera.fx = 700;
-  TumDatasetOptions with_camera;
-  with_camera.camera = option_camera;
-  const TumDataset from_options(seq.folder, with_camera);
-  EXPECT_EQ(from_options.camera().fx, 700.0);
-  EXPECT_FALSE(from_options.raw_camera().HasDistortion());
+  TumDatasetOptions custom;
+  custom.camera.source = "custom";
+  custom.camera.custom.fx = 700;
+  const TumDataset from_config(seq.folder, custom);
+  EXPECT_EQ(from_config.camera().fx, 700.0);
+  EXPECT_FALSE(from_config.raw_camera().HasDistortion());
+  EXPECT_EQ(from_config.camera_origin(), "config: camera.source \"custom\" and camera.*");
+  TumDatasetOptions named;
+  named.camera.source = "fr2";
+  const TumDataset from_named(seq.folder, named);
+  EXPECT_EQ(from_named.raw_camera().fx, 520.9);
+  EXPECT_EQ(from_named.depth_factor(), 5208.0);
 
   dir.Write(spec.name + "/camera.json", R"({"width":640,"height":480,"fx":500})");
   EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
@@ -267,6 +281,44 @@ TEST(TumDataset, CameraPrecedenceOptionsThenFileThenName) {
   const TumDataset trailing(seq.folder + "/");
   EXPECT_EQ(trailing.name(), spec.name);
   EXPECT_EQ(trailing.camera().fx, 535.4);
+}
+
+TEST(TumDataset, AFolderWhoseCameraCannotBeToldIsAnErrorThatSaysHowToGiveIt) {
+  TempDir dir;
+  TumTestFolderSpec spec;
+  spec.name = "my_office_walk";
+  spec.camera_json = false;
+  spec.frames = 1;
+  const TumTestFolder seq = WriteTumTestFolder(dir, spec);
+  const std::string error = InputErrorOf([&] { TumDataset{seq.folder}; });
+  EXPECT_EQ(error.rfind(seq.folder + ": cannot tell its camera", 0), 0u) << error;
+  for (const char* way : {"camera.json", "--set camera.source=custom", "ros_default"})
+    EXPECT_TRUE(Contains(error, way)) << way << " missing from: " << error;
+  // The ROS default only when asked for by name, and run.json's origin says so.
+  TumDatasetOptions ros;
+  ros.camera.source = "ros_default";
+  const TumDataset explicit_default(seq.folder, ros);
+  EXPECT_EQ(explicit_default.camera().fx, 525.0);
+  EXPECT_EQ(explicit_default.camera_origin(), "config: camera.source \"ros_default\" (ROS default pinhole)");
+  // Intrinsics given while the source would ignore them are refused, naming the key.
+  TumDatasetOptions ignored;
+  ignored.camera.custom.fx = 600;
+  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset(seq.folder, ignored); }),
+                       "camera.fx is set but camera.source is \"auto\""));
+}
+
+TEST(TumDataset, BonnFoldersReadWithBonnsCamera) {
+  TempDir dir;
+  TumTestFolderSpec spec;
+  spec.name = "rgbd_bonn_balloon";
+  spec.camera_json = false;
+  spec.frames = 1;
+  const TumTestFolder seq = WriteTumTestFolder(dir, spec);
+  const TumDataset bonn(seq.folder);
+  EXPECT_EQ(bonn.raw_camera().fx, 542.822841);
+  EXPECT_EQ(bonn.depth_factor(), 5000.0);
+  EXPECT_FALSE(bonn.camera().HasDistortion());  // undistorted on load
+  EXPECT_EQ(bonn.depth_factor_origin(), "folder name: Bonn RGB-D Dynamic Xtion");
 }
 
 TEST(TumDataset, CameraWithoutDistortionLeavesImagesByteIdentical) {
@@ -305,9 +357,10 @@ TEST(TumDataset, UndistortionMovesPixelsWherePredicted) {
   TempDir dir;
   TumTestFolderSpec spec;
   spec.name = "rgbd_dataset_freiburg1_synthetic";
+  spec.camera_json = false;
   spec.frames = 1;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
-  const Camera fr1 = TumCameraForSequence(spec.name);
+  const Camera fr1 = KnownCameraForFolder(spec.name)->camera;
   const cv::Point target(60, 50);  // near a corner, where fr1's distortion is large
   const cv::Point2d source = DistortedPixel(fr1, target);
   const cv::Point source_px(static_cast<int>(std::lround(source.x)), static_cast<int>(std::lround(source.y)));

@@ -7,6 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "dataset/camera_file.h"
+
 namespace dynvo::test {
 
 cv::Mat TestBgr(int width, int height, int k) {
@@ -62,6 +64,7 @@ TumTestFolder WriteTumTestFolder(const TempDir& dir, const TumTestFolderSpec& sp
   }
   WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, seq.rgb_files);
   WriteList(seq.folder, "depth.txt", seq.depth_stamps, seq.depth_files);
+  if (spec.camera_json) WriteCameraFile(seq.folder + "/camera.json", Camera());
   return seq;
 }
 

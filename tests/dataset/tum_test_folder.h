@@ -18,6 +18,7 @@ struct TumTestFolderSpec {
   double first_stamp = 100.0;   // s, RGB stamp of frame 0
   double period = 1.0 / 30.0;   // s between RGB frames
   double depth_offset = 0.005;  // s, depth stamp minus RGB stamp
+  bool camera_json = true;      // a camera.json with the ROS default intrinsics and no depth factor
 };
 
 struct TumTestFolder {
@@ -31,8 +32,8 @@ cv::Mat TestBgr(int width, int height, int k);
 // Depth PNG of frame k (CV_16UC1): 5000 * (1 + k) everywhere, 0 in column 0, 12345 at (1, 1).
 cv::Mat TestDepth(int width, int height, int k);
 
-// Writes the folder described by `spec` into `dir` (images and the two lists, stamps with
-// 6 decimals).
+// Writes the folder described by `spec` into `dir` (images, the two lists with stamps of 6
+// decimals, and camera.json when asked: a folder named like TUM's needs none).
 TumTestFolder WriteTumTestFolder(const TempDir& dir, const TumTestFolderSpec& spec);
 
 // Writes a list file "stamp path" per line into folder/list_name.

@@ -231,5 +231,42 @@ TEST(Rpe, ErrorsForUnusableInput) {
   EXPECT_EQ(ParseDeltaUnit("deg"), DeltaUnit::kDegrees);
 }
 
+// Returns the InputError message ComputeRpe throws, "" when it throws none.
+std::string RpeError(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
+  try {
+    ComputeRpe(gt, est, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Rpe, ADeltaBelowThePoseSpacingIsAnErrorNotAZero) {
+  const Trajectory gt = Wavy(100);
+  RpeOptions tiny;
+  tiny.delta = 0.001;  // 32 Hz poses: every pose's closest is itself
+  EXPECT_EQ(RpeError(gt, gt, tiny),
+            "--delta 0.001 s pairs every estimated pose with itself: the poses are 0.03125 s apart (median); use a "
+            "delta of at least that");
+  tiny.delta = 0.02;  // above half the spacing: the next pose is closest, a real pair
+  EXPECT_EQ(RpeError(gt, gt, tiny), "");
+}
+
+TEST(Rpe, AMotionlessEstimateSaysSoForPathAndRotationDeltas) {
+  const Trajectory gt = Line(100, 0.5);
+  const Trajectory still = MakeTrajectory(100, 1000.0, kDt, [](int, double) { return Pose::Identity(); });
+  for (DeltaUnit unit : {DeltaUnit::kMeters, DeltaUnit::kRadians, DeltaUnit::kDegrees}) {
+    RpeOptions options;
+    options.unit = unit;
+    const std::string error = RpeError(gt, still, options);
+    EXPECT_NE(error.find("moves 0 " + DeltaUnitName(unit) + " in all, less than the delta 1 " + DeltaUnitName(unit) +
+                         ": it is motionless"),
+              std::string::npos)
+        << error;
+  }
+  RpeOptions seconds;  // per second, a still estimate is a fine (bad) estimate
+  EXPECT_EQ(RpeError(gt, still, seconds), "");
+}
+
 }  // namespace
 }  // namespace dynvo

@@ -11,8 +11,8 @@
 
 #include "core/error.h"
 #include "dataset/image_list.h"
+#include "dataset/known_cameras.h"
 #include "dataset/stamp_matching.h"
-#include "dataset/tum_camera.h"
 #include "dataset/tum_dataset.h"
 #include "support/shared_data.h"
 #include "support/temp_dir.h"
@@ -128,7 +128,7 @@ TEST(PeopleInsertion, RealSequenceOcclusionUntouchedPixelsAndMasksWhileInView) {
   const TumDataset result(out.string(), raw);
   ASSERT_EQ(result.size(), 50u);
   ASSERT_TRUE(result.has_masks());
-  const Camera camera = TumCameraForSequence("freiburg1");
+  const Camera camera = KnownCameraByName("fr1")->camera;
   EXPECT_EQ(result.raw_camera().distortion, camera.distortion);
   EXPECT_EQ(result.groundtruth().size(), ReadTrajectory((in / "groundtruth.txt").string()).size());
 

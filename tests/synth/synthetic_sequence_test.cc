@@ -180,6 +180,13 @@ TEST(SyntheticSequence, ChecksOptionsNamingTheKey) {
   EXPECT_THROW(ParseScenario("running", "--scenario"), InputError);
   EXPECT_THROW(ParseCameraPathPreset("circle", "--camera-path"), InputError);
   EXPECT_THROW(TumIntrinsics("fr4", "--intrinsics"), InputError);
+  // Intrinsics the renderer cannot draw: named, not rendered into nonsense.
+  for (const auto& [fx, cx] : std::vector<std::pair<double, double>>{{1e-3, 320}, {1e6, 320}, {535, -5}, {535, 700}}) {
+    SyntheticSequenceOptions bad;
+    bad.camera.fx = fx;
+    bad.camera.cx = cx;
+    EXPECT_THROW(bad.Check(), InputError) << fx << " " << cx;
+  }
 }
 
 TEST(SyntheticSequence, ChecksTheRollingShutterReadoutAndBands) {

@@ -9,6 +9,7 @@ shell wrappers in tools/ and bench/ build the binaries first and call it):
   feature-budget       accuracy against the ORB budget and RANSAC seeds (bench/feature_budget.sh)
   speed-table, memory-table   the tables of bench/speed.sh and bench/memory.sh
   evaluate             one config on one sequence, run and evaluated: the shared step of all the above
+  lists                rgb.txt and depth.txt for a folder of PNGs (tools/make_lists.sh)
 
 Every command runs a config through the same helper (evaluation.run_and_evaluate).
 """
