@@ -7,6 +7,7 @@
 #include "apps/command_line_hint.h"
 #include "core/build_info.h"
 #include "core/error.h"
+#include "core/json_file.h"
 
 namespace dynvo {
 
@@ -50,7 +51,7 @@ void PrintMetrics(bool json, nlohmann::json report, const std::string& text, con
   }
   report["groundtruth"] = groundtruth_path;
   report["estimate"] = estimate_path;
-  std::cout << report.dump(2) << "\n";
+  std::cout << JsonText(report, 2) << "\n";
 }
 
 }  // namespace dynvo

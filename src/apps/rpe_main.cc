@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/app_files.h"
+#include "core/error.h"
 #include "dataset/trajectory_io.h"
 #include "eval/metrics_report.h"
 #include "eval/rpe.h"
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
     options.Check();
     const dynvo::Trajectory gt = dynvo::ReadNonEmptyTrajectory(gt_path);
     const dynvo::Trajectory est = dynvo::ReadNonEmptyTrajectory(est_path);
+    if (!pairs_out.empty() && all_pairs && est.size() * est.size() > dynvo::kMaxHeldRpePairs)
+      throw dynvo::InputError("--pairs-out with --all-pairs: " + std::to_string(est.size() * est.size()) +
+                              " pairs are more than the " + std::to_string(dynvo::kMaxHeldRpePairs) +
+                              " that are written (all pairs of at most 2000 poses)");
     const dynvo::RpeResult result = dynvo::ComputeRpe(gt, est, options);
     if (!pairs_out.empty()) dynvo::WriteOutputFile(pairs_out, dynvo::RpePairsCsv(result), force);
     dynvo::PrintMetrics(json, dynvo::RpeJson(result, options), dynvo::FormatRpeText(result), gt_path, est_path);

@@ -5,12 +5,13 @@
 
 #include "core/close_match.h"
 #include "core/error.h"
+#include "core/json_file.h"
 
 namespace dynvo {
 namespace {
 
 [[noreturn]] void TypeError(const std::string& where, const std::string& type, const nlohmann::json& value) {
-  throw InputError(where + " expects " + type + ", got " + value.dump());
+  throw InputError(where + " expects " + type + ", got " + JsonText(value));
 }
 
 void Flatten(const nlohmann::json& node, const std::string& prefix,
@@ -166,7 +167,7 @@ nlohmann::json ConfigRegistry::ToJson() const {
 std::vector<std::string> ConfigRegistry::Describe() const {
   std::vector<std::string> lines;
   for (const auto& [key, entry] : entries_)
-    lines.push_back(key + " (" + entry.type + ", default " + entry.get().dump() + "): " + entry.help);
+    lines.push_back(key + " (" + entry.type + ", default " + JsonText(entry.get()) + "): " + entry.help);
   return lines;
 }
 

@@ -16,6 +16,10 @@ struct OpenValue {
 
 }  // namespace
 
+std::string JsonText(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 nlohmann::json ParseJsonStrictly(const std::string& text, const std::string& source) {
   using nlohmann::json;
   std::vector<OpenValue> open;
@@ -44,7 +48,7 @@ nlohmann::json ParseJsonStrictly(const std::string& text, const std::string& sou
   };
   try {
     return json::parse(text, check_keys, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e309
     throw InputError(source + ": not valid JSON: " + e.what());
   }
 }

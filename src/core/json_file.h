@@ -12,4 +12,8 @@ namespace dynvo {
 // "<source>: not valid JSON: ..." or "<source>: key 'a.b' appears twice".
 nlohmann::json ParseJsonStrictly(const std::string& text, const std::string& source);
 
+// `value` as compact JSON text for a message or a file, never a throw: bytes that are not
+// UTF-8 (a path given with --set may hold any) are written as U+FFFD.
+std::string JsonText(const nlohmann::json& value, int indent = -1);
+
 }  // namespace dynvo

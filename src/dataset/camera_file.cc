@@ -19,7 +19,8 @@ double Number(const json& root, const std::string& key, const std::string& path,
   const json& value = root.at(key);
   if (!value.is_number() || !std::isfinite(value.get<double>()) || (positive && !(value.get<double>() > 0)))
     ThrowFileError(
-        path, 0, "key '" + key + "' must be a " + (positive ? "positive" : "finite") + " number, got " + value.dump());
+        path, 0,
+        "key '" + key + "' must be a " + (positive ? "positive" : "finite") + " number, got " + JsonText(value));
   return value.get<double>();
 }
 
@@ -27,14 +28,15 @@ int PositiveInteger(const json& root, const std::string& key, const std::string&
   if (!root.contains(key)) ThrowFileError(path, 0, "missing key '" + key + "'");
   const json& value = root.at(key);
   if (!value.is_number_integer() || value.get<long long>() <= 0 || value.get<long long>() > 1000000)
-    ThrowFileError(path, 0, "key '" + key + "' must be a positive integer, got " + value.dump());
+    ThrowFileError(path, 0, "key '" + key + "' must be a positive integer, got " + JsonText(value));
   return static_cast<int>(value.get<long long>());
 }
 
 }  // namespace
 
-CameraFile ReadCameraFile(const std::string& path) {
-  const std::string text = ReadTextFile(path);
+CameraFile ReadCameraFile(const std::string& path) { return ParseCameraFile(ReadTextFile(path), path); }
+
+CameraFile ParseCameraFile(const std::string& text, const std::string& path) {
   const json root = ParseJsonStrictly(text, path);
   if (!root.is_object()) ThrowFileError(path, 0, "expected a JSON object");
   static const char* const kKeys[] = {"width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor"};
@@ -62,7 +64,8 @@ CameraFile ReadCameraFile(const std::string& path) {
       ok = d[k].is_number() && std::isfinite(d[k].get<double>());
       if (ok) camera.distortion[k] = d[k].get<double>();
     }
-    if (!ok) ThrowFileError(path, 0, "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + d.dump());
+    if (!ok)
+      ThrowFileError(path, 0, "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + JsonText(d));
   }
   if (root.contains("depth_factor")) file.depth_factor = Number(root, "depth_factor", path, true);
   return file;

@@ -22,6 +22,9 @@ struct CameraFile {
 // out of range (sizes and focal lengths > 0, depth_factor > 0, 5 finite distortion values).
 CameraFile ReadCameraFile(const std::string& path);
 
+// As ReadCameraFile, from the file's text; `path` names it in messages.
+CameraFile ParseCameraFile(const std::string& text, const std::string& path);
+
 // Writes camera.json in the format above (depth_factor only when given), replacing the
 // file. Throws InputError when it cannot be written.
 void WriteCameraFile(const std::string& path, const Camera& camera, std::optional<double> depth_factor = std::nullopt);

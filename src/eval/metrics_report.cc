@@ -18,14 +18,16 @@ std::string StatisticsLines(const std::string& prefix, const ErrorStatistics& s,
 }  // namespace
 
 std::string FormatRpeText(const RpeResult& result) {
-  return "RPE " + result.variant + "\n" + "compared_pose_pairs " + std::to_string(result.pairs.size()) + " pairs\n" +
+  return "RPE " + result.variant + "\n" + "compared_pose_pairs " + std::to_string(result.pair_count) + " pairs\n" +
          StatisticsLines("translational_error", result.translation_m, "m") +
          StatisticsLines("rotational_error", result.rotation_deg, "deg");
 }
 
 std::string FormatAteText(const AteResult& result) {
   return "ATE: " + result.variant + "\n" + "compared_pose_pairs " + std::to_string(result.pairs.size()) + " pairs\n" +
-         StatisticsLines("absolute_translational_error", result.translation_m, "m");
+         StatisticsLines("absolute_translational_error", result.translation_m, "m") +
+         StatisticsLines("absolute_rotational_error", result.rotation_deg, "deg") +
+         (result.alignment_scale != 1.0 ? "alignment_scale " + FixedText(result.alignment_scale, 6) + "\n" : "");
 }
 
 nlohmann::json StatisticsJson(const ErrorStatistics& s) {
@@ -43,7 +45,7 @@ nlohmann::json RpeJson(const RpeResult& result, const RpeOptions& options) {
   j["offset_s"] = options.offset;
   j["scale"] = options.scale;
   j["closest"] = ClosestLookupName(options.closest);
-  j["compared_pose_pairs"] = result.pairs.size();
+  j["compared_pose_pairs"] = result.pair_count;
   j["translational_error_m"] = StatisticsJson(result.translation_m);
   j["rotational_error_deg"] = StatisticsJson(result.rotation_deg);
   return j;
@@ -56,8 +58,11 @@ nlohmann::json AteJson(const AteResult& result, const AteOptions& options) {
   j["offset_s"] = options.offset;
   j["scale"] = options.scale;
   j["max_difference_s"] = options.max_difference;
+  j["align"] = AteAlignmentName(options.align);
+  j["alignment_scale"] = result.alignment_scale;
   j["compared_pose_pairs"] = result.pairs.size();
   j["absolute_translational_error_m"] = StatisticsJson(result.translation_m);
+  j["absolute_rotational_error_deg"] = StatisticsJson(result.rotation_deg);
   const Eigen::Matrix3d& r = result.gt_from_est.linear();
   const Eigen::Vector3d& t = result.gt_from_est.translation();
   j["gt_from_est"] = {
@@ -76,9 +81,10 @@ std::string RpePairsCsv(const RpeResult& result) {
 }
 
 std::string AtePairsCsv(const AteResult& result) {
-  std::string out = "stamp_gt,stamp_est,trans_error_m\n";
+  std::string out = "stamp_gt,stamp_est,trans_error_m,rot_error_deg\n";
   for (const AtePair& p : result.pairs)
-    out += StampText(p.stamp_gt) + "," + StampText(p.stamp_est) + "," + FixedText(p.trans_error_m, 9) + "\n";
+    out += StampText(p.stamp_gt) + "," + StampText(p.stamp_est) + "," + FixedText(p.trans_error_m, 9) + "," +
+           FixedText(p.rot_error_deg, 9) + "\n";
   return out;
 }
 

@@ -1,8 +1,11 @@
 #include "eval/rpe.h"
 
 #include <cmath>
+#include <functional>
+#include <utility>
 
 #include "core/error.h"
+#include "eval/streamed_statistics.h"
 #include "eval/trajectory_stamps.h"
 
 namespace dynvo {
@@ -124,76 +127,125 @@ std::string RpeVariant(const RpeOptions& options) {
   return name + ": fixed delta " + delta + " " + unit_words + ", " + lookup;
 }
 
+namespace {
+
+// The pose pairs of one RPE computation, produced on demand in the script's order (by i,
+// then j), so that all pairs of a long trajectory need not be held at once.
+class RpePairing {
+ public:
+  RpePairing(const Trajectory& gt, const Trajectory& est, const RpeOptions& options)
+      : gt_(gt),
+        est_(est),
+        options_(options),
+        stamps_gt_(Stamps(gt, "groundtruth")),
+        stamps_est_(Stamps(est, "estimated")) {
+    RequireOverlap(stamps_gt_, stamps_est_, options);
+    std::vector<double> gaps;
+    for (std::size_t k = 1; k < stamps_gt_.size(); ++k) gaps.push_back(stamps_gt_[k] - stamps_gt_[k - 1]);
+    max_time_difference_ = 2.0 * Median(gaps);
+    // Groundtruth index of each estimated stamp, and whether it is close enough.
+    const std::size_t n = est.size();
+    for (const StampedPose& p : est) est_inverse_.push_back(p.world_from_camera.inverse());
+    for (const StampedPose& p : gt) gt_inverse_.push_back(p.world_from_camera.inverse());
+    gt_of_est_.resize(n);
+    usable_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = stamps_est_[i] + options.offset;
+      gt_of_est_[i] = ClosestIndex(stamps_gt_, t, options.closest);
+      usable_[i] = !(std::abs(stamps_gt_[gt_of_est_[i]] - t) > max_time_difference_);
+    }
+    if (options.fixed_delta) {
+      const std::vector<double> index = DeltaIndex(est, stamps_est_, options.unit);
+      RequireMotion(index, options);
+      RequireDeltaAboveSpacing(index, options);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t j = ClosestIndex(index, index[i] + options.delta, options.closest);
+        if (j != n - 1) delta_pairs_.emplace_back(i, j);
+      }
+    }
+  }
+
+  // Pose pairs considered, with or without groundtruth.
+  std::size_t candidates() const { return options_.fixed_delta ? delta_pairs_.size() : est_.size() * est_.size(); }
+  double max_time_difference() const { return max_time_difference_; }
+
+  // Calls visit(pair) for every candidate pair whose two poses have groundtruth.
+  void ForEach(const std::function<void(const RpePair&)>& visit) const {
+    if (options_.fixed_delta) {
+      for (const auto& [i, j] : delta_pairs_) Compare(i, j, visit);
+      return;
+    }
+    for (std::size_t i = 0; i < est_.size(); ++i)
+      for (std::size_t j = 0; j < est_.size(); ++j) Compare(i, j, visit);
+  }
+
+ private:
+  void Compare(std::size_t i, std::size_t j, const std::function<void(const RpePair&)>& visit) const {
+    if (!usable_[i] || !usable_[j]) return;
+    const std::size_t gi = gt_of_est_[i], gj = gt_of_est_[j];
+    // E = inv(inv(P_j) P_i) inv(Q_j) Q_i, from the inverses computed once per pose.
+    const Pose gt_motion = gt_inverse_[gj] * gt_[gi].world_from_camera;
+    Pose error;
+    if (options_.scale == 1.0) {
+      error = est_inverse_[i] * est_[j].world_from_camera * gt_motion;
+    } else {
+      Pose est_motion = est_inverse_[j] * est_[i].world_from_camera;
+      est_motion.translation() *= options_.scale;
+      error = est_motion.inverse() * gt_motion;
+    }
+    visit({stamps_est_[i], stamps_est_[j], stamps_gt_[gi], stamps_gt_[gj], error.translation().norm(),
+           RotationAngle(error)});
+  }
+
+  const Trajectory& gt_;
+  const Trajectory& est_;
+  const RpeOptions options_;
+  const std::vector<double> stamps_gt_, stamps_est_;
+  double max_time_difference_ = 0;
+  std::vector<Pose> est_inverse_, gt_inverse_;
+  std::vector<std::size_t> gt_of_est_;
+  std::vector<bool> usable_;
+  std::vector<std::pair<std::size_t, std::size_t>> delta_pairs_;
+};
+
+}  // namespace
+
 RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
   options.Check();
-  const std::vector<double> stamps_gt = Stamps(gt, "groundtruth");
-  const std::vector<double> stamps_est = Stamps(est, "estimated");
-  const auto closest = [&](const std::vector<double>& list, double t) {
-    return ClosestIndex(list, t, options.closest);
-  };
-
-  RequireOverlap(stamps_gt, stamps_est, options);
-
-  const std::size_t n = est.size();
-  std::vector<double> gaps;
-  gaps.reserve(stamps_gt.size() - 1);
-  for (std::size_t k = 1; k < stamps_gt.size(); ++k) gaps.push_back(stamps_gt[k] - stamps_gt[k - 1]);
-  const double max_time_difference = 2.0 * Median(gaps);
-
-  // Groundtruth index of each estimated stamp, and whether it is close enough.
-  std::vector<std::size_t> gt_of_est(n);
-  std::vector<bool> usable(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = stamps_est[i] + options.offset;
-    gt_of_est[i] = closest(stamps_gt, t);
-    usable[i] = !(std::abs(stamps_gt[gt_of_est[i]] - t) > max_time_difference);
-  }
-
-  RpeResult result;
-  result.variant = RpeVariant(options);
-  std::vector<double> trans_errors, rot_errors_deg;
-  std::size_t candidates = 0;
-  const auto compare = [&](std::size_t i, std::size_t j) {
-    ++candidates;
-    if (!usable[i] || !usable[j]) return;
-    const std::size_t gi = gt_of_est[i], gj = gt_of_est[j];
-    Pose est_motion = est[j].world_from_camera.inverse() * est[i].world_from_camera;
-    est_motion.translation() *= options.scale;
-    const Pose gt_motion = gt[gj].world_from_camera.inverse() * gt[gi].world_from_camera;
-    const Pose error = est_motion.inverse() * gt_motion;
-    RpePair pair;
-    pair.stamp_est_0 = stamps_est[i];
-    pair.stamp_est_1 = stamps_est[j];
-    pair.stamp_gt_0 = stamps_gt[gi];
-    pair.stamp_gt_1 = stamps_gt[gj];
-    pair.trans_error_m = error.translation().norm();
-    pair.rot_error_rad = RotationAngle(error);
-    result.pairs.push_back(pair);
-    trans_errors.push_back(pair.trans_error_m);
-    rot_errors_deg.push_back(pair.rot_error_rad * 180.0 / kPi);
-  };
-  if (options.fixed_delta) {
-    const std::vector<double> index = DeltaIndex(est, stamps_est, options.unit);
-    RequireMotion(index, options);
-    RequireDeltaAboveSpacing(index, options);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t j = closest(index, index[i] + options.delta);
-      if (j != n - 1) compare(i, j);
-    }
-  } else {
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < n; ++j) compare(i, j);
-  }
+  const RpePairing pairing(gt, est, options);
+  const std::size_t candidates = pairing.candidates();
   if (candidates < 2)
     throw InputError("the estimated trajectory gives " + std::to_string(candidates) + " pose pairs at fixed delta " +
                      FormatNumber(options.delta) + " " + DeltaUnitName(options.unit) +
                      ", need at least 2: is it longer than the delta?");
-  if (result.pairs.size() < 2)
-    throw InputError("only " + std::to_string(result.pairs.size()) + " of " + std::to_string(candidates) +
-                     " pose pairs have groundtruth within " + FormatNumber(max_time_difference) +
+  RpeResult result;
+  result.variant = RpeVariant(options);
+  if (candidates <= kMaxHeldRpePairs) {
+    std::vector<double> trans_errors, rot_errors_deg;
+    pairing.ForEach([&](const RpePair& pair) {
+      result.pairs.push_back(pair);
+      trans_errors.push_back(pair.trans_error_m);
+      rot_errors_deg.push_back(pair.rot_error_rad * 180.0 / kPi);
+    });
+    result.translation_m = Summarize(trans_errors);
+    result.rotation_deg = Summarize(rot_errors_deg);
+  } else {
+    // Too many to hold: every statistic streamed over passes through the pairs.
+    const std::vector<ErrorStatistics> stats =
+        SummarizeStreamed(2, [&](const std::function<void(const double*)>& sink) {
+          pairing.ForEach([&](const RpePair& pair) {
+            const double errors[2] = {pair.trans_error_m, pair.rot_error_rad * 180.0 / kPi};
+            sink(errors);
+          });
+        });
+    result.translation_m = stats[0];
+    result.rotation_deg = stats[1];
+  }
+  result.pair_count = result.translation_m.count;
+  if (result.pair_count < 2)
+    throw InputError("only " + std::to_string(result.pair_count) + " of " + std::to_string(candidates) +
+                     " pose pairs have groundtruth within " + FormatNumber(pairing.max_time_difference()) +
                      " s (twice the median groundtruth interval), need at least 2");
-  result.translation_m = Summarize(trans_errors);
-  result.rotation_deg = Summarize(rot_errors_deg);
   return result;
 }
 

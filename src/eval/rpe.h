@@ -1,6 +1,7 @@
 #pragma once
 // Relative pose error with the semantics of the TUM benchmark's evaluate_rpe.py.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,14 @@ struct RpePair {
   double rot_error_rad = 0.0;                   // radians
 };
 
+// Pairs beyond this many are not held: their statistics are streamed (all pairs of a
+// trajectory of more than 2000 poses).
+constexpr std::size_t kMaxHeldRpePairs = 4000000;
+
 struct RpeResult {
-  std::vector<RpePair> pairs;  // in the order the script builds them (by i, then j)
+  std::size_t pair_count = 0;  // pairs compared
+  std::vector<RpePair> pairs;  // in the order the script builds them (by i, then j); empty when
+                               // more than kMaxHeldRpePairs (the statistics are then streamed)
   ErrorStatistics translation_m;
   ErrorStatistics rotation_deg;
   // What the numbers are, e.g. "per second: fixed delta 1 s, benchmark closest-index lookup".
@@ -51,7 +58,9 @@ struct RpeResult {
 // ordered pair (deterministic; the script samples 10000 random pairs for >= 100 poses).
 // Estimated stamps are looked up in the groundtruth without interpolation; pairs whose
 // stamp gap exceeds twice the median groundtruth interval are dropped. Error
-// E = inv(scale(inv(P_j) P_i)) inv(Q_j) Q_i. Throws InputError for bad options, trajectories
+// E = inv(scale(inv(P_j) P_i)) inv(Q_j) Q_i. Beyond kMaxHeldRpePairs pairs, the pairs are not
+// kept and the statistics (the median exactly) are computed in passes over them, in memory
+// independent of their number. Throws InputError for bad options, trajectories
 // with fewer than 2 poses or non-increasing stamps, and fewer than 2 resulting pairs.
 RpeResult ComputeRpe(const Trajectory& gt, const Trajectory& est, const RpeOptions& options);
 

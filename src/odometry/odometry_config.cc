@@ -168,24 +168,29 @@ void BindConfigKeys(OdometryConfig* c, ConfigRegistry* r) {
   NoteMovedKeys(r);
 }
 
-OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std::string>& overrides) {
+OdometryConfig ParseOdometryConfig(const std::string& text, const std::string& source,
+                                   const std::vector<std::string>& overrides) {
   OdometryConfig config;
   ConfigRegistry registry;
   BindConfigKeys(&config, &registry);
-  if (!path.empty()) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open config file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    registry.Apply(ParseJsonStrictly(text.str(), path), path);
-  }
+  if (!text.empty()) registry.Apply(ParseJsonStrictly(text, source), source);
   for (const std::string& assignment : overrides) registry.ApplyOverride(assignment);
   try {
     config.Check();
   } catch (const InputError& e) {
-    throw InputError((path.empty() ? std::string("config") : path) + ": " + e.what());
+    throw InputError((source.empty() ? std::string("config") : source) + ": " + e.what());
   }
   return config;
+}
+
+OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std::string>& overrides) {
+  if (path.empty()) return ParseOdometryConfig("", "", overrides);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().empty()) throw InputError(path + ": empty config file (a config is a JSON object, {} at least)");
+  return ParseOdometryConfig(text.str(), path, overrides);
 }
 
 nlohmann::json OdometryConfigToJson(const OdometryConfig& config) {

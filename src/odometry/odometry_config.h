@@ -79,6 +79,11 @@ void BindConfigKeys(OdometryConfig* config, ConfigRegistry* registry);
 // order; then Check(). Throws InputError naming the file, key or override at fault.
 OdometryConfig LoadOdometryConfig(const std::string& path, const std::vector<std::string>& overrides);
 
+// As LoadOdometryConfig, from the JSON text of a config ("" = defaults only); `source` names it
+// in messages.
+OdometryConfig ParseOdometryConfig(const std::string& text, const std::string& source,
+                                   const std::vector<std::string>& overrides);
+
 // The effective config as JSON (every key, nested by section).
 nlohmann::json OdometryConfigToJson(const OdometryConfig& config);
 

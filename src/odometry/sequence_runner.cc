@@ -12,6 +12,7 @@
 
 #include "core/build_info.h"
 #include "core/error.h"
+#include "core/json_file.h"
 #include "core/output_file.h"
 #include "dataset/trajectory_io.h"
 #include "odometry/debug_panels_writer.h"
@@ -316,8 +317,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   AddRunResults(tally, wall_s, end, threads, evaluate_masks, &report);
   // Paths may hold any bytes: those that are not UTF-8 are written as U+FFFD, never a throw.
   try {
-    WriteFileAtomically((out / "run.json").string(),
-                        report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    WriteFileAtomically((out / "run.json").string(), JsonText(report, 2) + "\n");
   } catch (const InputError& e) {
     if (end.status != RunStatus::kFailed) throw;
     throw InputError(end.message + "; and " + e.what());  // the first failure first

@@ -27,6 +27,7 @@ TEST(ParseJsonStrictly, ReadsCommentsAndNamesARepeatedKeyWithItsPath) {
   // The same key in two objects is no repetition, nor in two objects of one array.
   EXPECT_EQ(ErrorOf(R"({"x": {"k": 1}, "y": {"k": 2}, "z": [{"k": 1}, {"k": 2}]})"), "");
   EXPECT_EQ(ErrorOf("{").rfind("config.json: not valid JSON: ", 0), 0u);
+  EXPECT_EQ(ErrorOf(R"({"a": 1e309})").rfind("config.json: not valid JSON: ", 0), 0u);  // found by the fuzz test
 }
 
 }  // namespace

@@ -84,6 +84,49 @@ TEST(Ate, AssociatesWithOffsetAndMaxDifference) {
   EXPECT_EQ(ComputeAte(sparse_gt, est, options).pairs.size(), 50u);
 }
 
+TEST(Ate, Sim3AlignmentRecoversTheScaleThatSe3Cannot) {
+  // A monocular-like estimate: the groundtruth moved rigidly and shrunk to 0.4 of its size.
+  const Trajectory gt = Wavy(200, 10.0);
+  const Pose est_from_gt = PoseFromAxisAngle({0.3, 2.0, -0.7}, {5.0, -3.0, 1.0});
+  Trajectory est = gt;
+  for (StampedPose& p : est) {
+    p.world_from_camera = est_from_gt * p.world_from_camera;
+    p.world_from_camera.translation() *= 0.4;
+  }
+  AteOptions sim3;
+  sim3.align = AteAlignment::kSim3;
+  const AteResult r = ComputeAte(gt, est, sim3);
+  EXPECT_NEAR(r.alignment_scale, 2.5, 1e-9);
+  EXPECT_NEAR(r.translation_m.rmse, 0.0, 1e-9);
+  EXPECT_NEAR(r.rotation_deg.max, 0.0, 1e-4);  // acos near 1
+  EXPECT_NE(r.variant.find("Umeyama alignment with scale"), std::string::npos);
+  EXPECT_GT(ComputeAte(gt, est, AteOptions{}).translation_m.rmse, 0.05);  // Horn cannot fix the scale
+  // The aligned estimate, written whole, is the groundtruth.
+  const Trajectory aligned = AlignTrajectory(est, r.gt_from_est, r.alignment_scale);
+  EXPECT_NEAR((aligned[77].world_from_camera.matrix() - gt[77].world_from_camera.matrix()).norm(), 0.0, 1e-9);
+}
+
+TEST(Ate, NoAlignmentAndTheRotationalError) {
+  const Trajectory gt = Wavy(100, 10.0);
+  // The same positions, every camera turned 5 degrees about its own z axis.
+  Trajectory turned = gt;
+  for (StampedPose& p : turned)
+    p.world_from_camera = p.world_from_camera * PoseFromAxisAngle({0, 0, 5 * M_PI / 180}, {0, 0, 0});
+  const AteResult r = ComputeAte(gt, turned, AteOptions{});
+  EXPECT_NEAR(r.translation_m.max, 0.0, 1e-9);
+  EXPECT_NEAR(r.rotation_deg.min, 5.0, 1e-6);
+  EXPECT_NEAR(r.rotation_deg.max, 5.0, 1e-6);
+  // Without alignment, a shifted estimate keeps its shift.
+  Trajectory shifted = gt;
+  for (StampedPose& p : shifted) p.world_from_camera.translation() += Eigen::Vector3d(0.3, 0, 0.4);
+  AteOptions none;
+  none.align = AteAlignment::kNone;
+  EXPECT_NEAR(ComputeAte(gt, shifted, none).translation_m.median, 0.5, 1e-9);
+  EXPECT_NEAR(ComputeAte(gt, shifted, AteOptions{}).translation_m.median, 0.0, 1e-9);
+  EXPECT_EQ(ParseAteAlignment("sim3"), AteAlignment::kSim3);
+  EXPECT_THROW(ParseAteAlignment("sim2"), InputError);
+}
+
 TEST(Ate, OptionsCheckNamesKeys) {
   AteOptions o;
   o.max_difference = 0.0;

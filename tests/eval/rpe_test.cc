@@ -181,6 +181,37 @@ TEST(Rpe, AllPairsIsEveryOrderedPair) {
   EXPECT_NE(r.variant.find("all pairs"), std::string::npos);
 }
 
+TEST(Rpe, AllPairsOfALongTrajectoryAreStreamedWithTheSameStatistics) {
+  // 2100 poses: 4.41 million pairs, beyond what is held. The errors grow with the pair's span.
+  const int n = 2100;
+  const Trajectory gt = Wavy(n);
+  Trajectory est = gt;
+  for (int k = 0; k < n; ++k) est[k].world_from_camera.translation().x() += 1e-3 * std::sin(0.01 * k * k);
+  RpeOptions options;
+  options.fixed_delta = false;
+  const RpeResult r = ComputeRpe(gt, est, options);
+  EXPECT_TRUE(r.pairs.empty());
+  EXPECT_EQ(r.pair_count, static_cast<std::size_t>(n) * n);
+  // The truth: every pair's error computed here and summarised in memory.
+  std::vector<double> trans, rot;
+  trans.reserve(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Pose error = (est[j].world_from_camera.inverse() * est[i].world_from_camera).inverse() *
+                         (gt[j].world_from_camera.inverse() * gt[i].world_from_camera);
+      trans.push_back(error.translation().norm());
+      rot.push_back(RotationAngle(error) * 180.0 / kPi);
+    }
+  const ErrorStatistics t = Summarize(trans), q = Summarize(rot);
+  // The same pairs; the products in another order: equal to rounding.
+  EXPECT_NEAR(r.translation_m.median, t.median, 1e-12);
+  EXPECT_NEAR(r.translation_m.max, t.max, 1e-12);
+  EXPECT_NEAR(r.translation_m.rmse, t.rmse, 1e-12);
+  EXPECT_NEAR(r.translation_m.std, t.std, 1e-12);
+  EXPECT_NEAR(r.rotation_deg.median, q.median, 1e-9);
+  EXPECT_NEAR(r.rotation_deg.mean, q.mean, 1e-9);
+}
+
 TEST(Rpe, NearestLookupDiffersOnlyOnTies) {
   // Frames unit with delta 1.5: every target i + 1.5 is a tie between i + 1 and i + 2. The
   // nearest lookup takes i + 1; the benchmark search takes whichever it visits first.

@@ -106,6 +106,8 @@ class SweepTest(unittest.TestCase):
         commands = [l for l in lines if "$SLURM_ARRAY_TASK_ID" in l and not l.startswith("#")]
         self.assertEqual(len(commands), 1, lines)
         words = shlex.split(commands[0])
+        if words[0] == "env":  # the --slurm-container prefix
+            words = words[1:]
         same = lambda a, b: self.assertEqual(os.path.realpath(a), os.path.realpath(b))
         self.assertEqual(words[0], "bash")
         same(words[1], SWEEP)
@@ -144,9 +146,17 @@ class SweepTest(unittest.TestCase):
     def test_slurm_array_index_collect_and_resume(self) -> None:
         out = os.path.join(self.tmp, "out")
         script = os.path.join(self.tmp, "sweep.sbatch")
-        r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--jobs", "2", "--slurm", script)
+        r = sweep(self.grid, "--dataset", self.seq, "--out", out, "--jobs", "2", "--slurm", script,
+                  "--slurm-time", "00:30:00", "--slurm-mem", "3G", "--slurm-partition", "short",
+                  "--slurm-setup", "echo setup ran >&2", "--slurm-container", "env")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(run_dirs(out), [], "--slurm must run nothing")
+        for directive in ("#SBATCH --time=00:30:00", "#SBATCH --mem=3G", "#SBATCH --partition=short"):
+            self.assertIn(directive + "\n", read(script))
+        self.assertIn("\necho setup ran >&2\n", read(script))
+        bad = sweep(self.grid, "--dataset", self.seq, "--out", out, "--slurm", script, "--slurm-mem", "3 G")
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("an #SBATCH value is one word", bad.stderr)
 
         self.check_slurm_script(script, out)
         est, rmse = self.run_array_task(script, out)

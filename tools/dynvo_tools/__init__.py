@@ -10,6 +10,7 @@ shell wrappers in tools/ and bench/ build the binaries first and call it):
   speed-table, memory-table   the tables of bench/speed.sh and bench/memory.sh
   evaluate             one config on one sequence, run and evaluated: the shared step of all the above
   lists                rgb.txt and depth.txt for a folder of PNGs (tools/make_lists.sh)
+  compare              several trajectories against one groundtruth: table and plots (tools/compare.sh)
 
 Every command runs a config through the same helper (evaluation.run_and_evaluate).
 """

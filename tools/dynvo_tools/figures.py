@@ -285,8 +285,7 @@ def plot_rpe_over_time(path: str, sequence: str, dataset: str, paper: Evaluated,
     axes[2].set_xlabel("time since the first frame (s); RPE plotted at the start of each 1 s window")
     axes[2].grid(alpha=0.3)
     axes[2].legend(loc="best", fontsize="small")
-    fig.suptitle("Per-second RPE over time on %s\n(rpe --delta 1 --delta-unit s: TUM "
-                 "evaluate_rpe.py --fixed_delta semantics)" % sequence)
+    fig.suptitle("Per-second RPE over time on %s\n(TUM evaluate_rpe.py, fixed delta of 1 s)" % sequence)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -326,7 +325,7 @@ def plot_trajectory_top(path: str, sequence: str, dataset: str, paper: Evaluated
     ax.set_ylabel("groundtruth %s (m)" % names[b])
     ax.grid(alpha=0.3)
     ax.legend(loc="best")
-    ax.set_title("Trajectories on %s, aligned onto the groundtruth\n(ate: Horn rotation + "
+    ax.set_title("Trajectories on %s, aligned onto the groundtruth\n(Horn rotation + "
                  "translation, no scale; the plane of the two axes with most motion)" % sequence)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

@@ -432,19 +432,24 @@ SLURM_SCRIPT = """#!/bin/bash
 # Submit:  sbatch %(path)s
 # Collect: %(quoted)s --collect
 # (Or rerun the sweep without --slurm: finished points are skipped.)
-# Add your site's options (partition, account, time limit) as more #SBATCH lines.
+# Add your site's other options (account, QOS) as more #SBATCH lines.
 #SBATCH --job-name=dynvo-sweep
 #SBATCH --array=0-%(last)d
 #SBATCH --cpus-per-task=2
-#SBATCH --output=%(logs)s/%%A_%%a.log
+#SBATCH --time=%(time)s
+#SBATCH --mem=%(mem)s
+%(partition)s#SBATCH --output=%(logs)s/%%A_%%a.log
 set -euo pipefail
-export DYNVO_BIN_DIR=%(bin)s
-%(quoted)s --index "$SLURM_ARRAY_TASK_ID"
+# Site setup (--slurm-setup): module loads, environments.
+%(setup)sexport DYNVO_BIN_DIR=%(bin)s
+%(container)s%(quoted)s --index "$SLURM_ARRAY_TASK_ID"
 """
 
 
-def write_slurm(grid: Grid, out: str, datasets: list[tuple[str, str]], path: str) -> None:
-    """An sbatch job-array script: array task I runs grid point I on every dataset."""
+def write_slurm(grid: Grid, out: str, datasets: list[tuple[str, str]], path: str, args: argparse.Namespace) -> None:
+    """An sbatch job-array script: array task I runs grid point I on every dataset, with the
+    time, memory and partition of --slurm-*, the --slurm-setup lines before it and the
+    --slurm-container prefix (e.g. `apptainer exec dynvo.sif`) in front of it."""
     out = os.path.abspath(out)
     logs = os.path.join(out, "slurm")
     os.makedirs(logs, exist_ok=True)
@@ -457,7 +462,11 @@ def write_slurm(grid: Grid, out: str, datasets: list[tuple[str, str]], path: str
     text = SLURM_SCRIPT % {
         "grid": os.path.abspath(grid.path), "n": n, "nd": len(datasets),
         "path": shlex.quote(os.path.abspath(path)), "quoted": quoted, "last": n - 1,
-        "logs": shlex.quote(logs), "bin": shlex.quote(os.path.dirname(os.path.abspath(bin_path("rpe"))))}
+        "logs": shlex.quote(logs), "bin": shlex.quote(os.path.dirname(os.path.abspath(bin_path("rpe")))),
+        "time": args.slurm_time, "mem": args.slurm_mem,
+        "partition": "#SBATCH --partition=%s\n" % args.slurm_partition if args.slurm_partition else "",
+        "setup": "".join(line + "\n" for line in args.slurm_setup),
+        "container": args.slurm_container + " " if args.slurm_container else ""}
     with open(path, "w") as f:
         f.write(text)
     os.chmod(path, 0o755)
@@ -466,6 +475,13 @@ def write_slurm(grid: Grid, out: str, datasets: list[tuple[str, str]], path: str
 
 
 # ---------------------------------------------------------------- the command
+
+def slurm_value(text: str) -> str:
+    """An #SBATCH value: one word, no line break."""
+    if not text or any(c.isspace() for c in text):
+        raise argparse.ArgumentTypeError("an #SBATCH value is one word, got %r" % text)
+    return text
+
 
 def positive_int(text: str) -> int:
     """--jobs: an integer of at least 1."""
@@ -492,6 +508,17 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--slurm", metavar="FILE", help="write an sbatch job-array script instead of running")
     mode.add_argument("--index", type=int, help="run grid point INDEX only (what an array task does)")
+    slurm = parser.add_argument_group("the Slurm script (with --slurm)")
+    slurm.add_argument("--slurm-time", default="01:00:00", type=slurm_value,
+                       help="time limit of one array task, [D-]HH:MM:SS (default 01:00:00: a grid point on a"
+                            " few 900-frame sequences takes minutes)")
+    slurm.add_argument("--slurm-mem", default="2G", type=slurm_value,
+                       help="memory of one array task (default 2G; a run peaks near 300 MB)")
+    slurm.add_argument("--slurm-partition", type=slurm_value, help="the partition to submit to")
+    slurm.add_argument("--slurm-setup", action="append", default=[], metavar="LINE",
+                       help="a shell line run before the task, e.g. 'module load opencv' (repeatable)")
+    slurm.add_argument("--slurm-container", metavar="PREFIX",
+                       help="a command prefix the task runs under, e.g. 'apptainer exec dynvo.sif'")
     mode.add_argument("--collect", action="store_true",
                       help="run nothing: write the CSV, heat map and summary of the finished runs")
     parser.set_defaults(run=run_sweep)
@@ -507,7 +534,7 @@ def run_sweep(args: argparse.Namespace) -> int:
     if not args.collect:
         check_with_dynvo_cli(grid, args.jobs)
     if args.slurm:
-        write_slurm(grid, args.out, datasets, args.slurm)
+        write_slurm(grid, args.out, datasets, args.slurm, args)
         return 0
     binary = file_sha256(bin_path("dynvo-cli"))
     indices = [args.index] if args.index is not None else range(len(grid.points))
