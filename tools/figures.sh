@@ -6,7 +6,8 @@
 # --dataset it generates a dynamic sequence (two people crossing, camera moving along x/y/z,
 # 300 frames), so no download is needed.
 #   bash tools/figures.sh [--dataset TUM_DIR] [--out DIR] [--work DIR] [--frames-to-show 75,225]
-#                         [--paper-run RUN_DIR] [--baseline-run RUN_DIR] [--force]
+#                         [--paper-run RUN_DIR] [--baseline-run RUN_DIR]
+#                         [--trajectory FILE [--label NAME]]... [--force]
 # The figures of docs/results.md: bash tools/figures.sh --out bench/results --force
 # Env: DYNVO_BUILD_DIR (default build/), PYTHON (default /usr/bin/python3).
 set -euo pipefail

@@ -149,6 +149,14 @@ TEST(DynvoCli, EveryProgramTellsItsVersionAndCommit) {
                          report["dynvo_commit"].get<std::string>() + ")\n");
 }
 
+TEST(DynvoCli, RunHelpNamesTheDefaultConfigTruly) {
+  // The built-in defaults are configs/dynvo.json (odometry_config_test checks they are equal).
+  test::TempDir dir;
+  const ToolOutcome o = RunTool(dir, "dynvo-cli", "run --help");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_NE(o.out.find("default: the built-in recommended config, = configs/dynvo.json"), std::string::npos) << o.out;
+}
+
 TEST(DynvoCli, ConfigKeysListsEveryKey) {
   test::TempDir dir;
   const ToolOutcome o = RunTool(dir, "dynvo-cli", "config-keys --markdown");

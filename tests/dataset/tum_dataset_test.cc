@@ -220,6 +220,20 @@ TEST(TumDataset, ImageErrorsNameThePng) {
   EXPECT_TRUE(Contains(message, png(seq.depth_files[5]) + ": image is 641x480")) << message;
 }
 
+TEST(TumDataset, AnImageNameTooLongIsAnInputErrorNamingIt) {
+  TempDir dir;
+  TumTestFolderSpec spec;
+  spec.frames = 2;
+  const TumTestFolder seq = WriteTumTestFolder(dir, spec);
+  const std::string long_name = "rgb/" + std::string(300, 'a') + ".png";  // beyond NAME_MAX (255)
+  test::WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, {seq.rgb_files[0], long_name});
+  const TumDataset dataset(seq.folder);
+  EXPECT_NO_THROW(dataset.Load(0));
+  const std::string error = InputErrorOf([&] { dataset.Load(1); });
+  EXPECT_EQ(error.rfind(seq.folder + "/" + long_name + ": cannot examine: File name too long", 0), 0u) << error;
+  EXPECT_TRUE(Contains(error, "rgb.txt:")) << error;
+}
+
 TEST(TumDataset, AcceptsGrayAndBgraRgbImages) {
   TempDir dir;
   TumTestFolderSpec spec;

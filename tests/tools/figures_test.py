@@ -92,6 +92,26 @@ class FiguresTest(unittest.TestCase):
         self.assertEqual([os.stat(path).st_mtime_ns for path in trajectories], stamps)
         self.assert_figures(out, {"fig_mask_panels.png": 1000})
 
+    def test_draws_another_systems_trajectory_beside_dynvos(self) -> None:
+        self.assertEqual(self.first.returncode, 0, self.first.stderr)
+        # A foreign trajectory: the baseline's, in a file dynvo did not write into a run folder.
+        other = os.path.join(self.tmp, "CameraTrajectory.txt")
+        shutil.copy(os.path.join(self.work, "baseline", "trajectory.txt"), other)
+        out = os.path.join(self.tmp, "foreign")
+        result = run_figures("--paper-run", os.path.join(self.work, "paper"), "--baseline-run",
+                             os.path.join(self.work, "baseline"), "--work", out, "--out", out,
+                             "--trajectory", other, "--label", "ORB-SLAM2")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(os.path.isfile(os.path.join(out, "other_0_aligned.txt")))
+        with open(os.path.join(out, "fig_trajectory_top.pdf"), "rb") as f:
+            self.assertEqual(f.read(5), b"%PDF-")
+        self.assert_figures(out, {"fig_mask_panels.png": 1000})
+        missing = run_figures("--paper-run", os.path.join(self.work, "paper"), "--baseline-run",
+                              os.path.join(self.work, "baseline"), "--work", out, "--out", out, "--force",
+                              "--trajectory", os.path.join(self.tmp, "none.txt"))
+        self.assertEqual(missing.returncode, 1)
+        self.assertIn("none.txt: no such file", missing.stderr)
+
     def test_does_not_overwrite_without_force(self) -> None:
         self.assertEqual(self.first.returncode, 0, self.first.stderr)
         result = run_figures("--dataset", self.dataset, "--work", self.work, "--out", self.out)

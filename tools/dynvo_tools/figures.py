@@ -1,4 +1,5 @@
-"""The `figures` command: the paper's figures from dynvo's own outputs, as PNG files.
+"""The `figures` command: the paper's figures from dynvo's own outputs, as PNG files (and PDF
+beside each).
 
   fig_rpe_over_time.png    per-second RPE of paper mode and baseline over time (the paper's
                            Fig. 6), with the share of dynamic pixels below
@@ -14,7 +15,11 @@ RUN/rpe.json and RUN/ate.json), unless existing run folders are given with --pap
 real TUM folder works the same way.
 
   bash tools/figures.sh [--dataset DIR] [--out DIR] [--work DIR] [--frames-to-show 75,225]
-                        [--paper-run RUN_DIR] [--baseline-run RUN_DIR] [--force]
+                        [--paper-run RUN_DIR] [--baseline-run RUN_DIR]
+                        [--trajectory FILE [--label NAME]]... [--force]
+
+Other systems' trajectories of the same sequence (--trajectory, e.g. ORB-SLAM2's
+CameraTrajectory.txt) are evaluated the same way and drawn beside dynvo's.
 
 Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib, /usr/bin/python3); they
 are imported only when the command runs.
@@ -24,11 +29,12 @@ from __future__ import annotations
 import argparse
 import csv
 import dataclasses
+import json
 import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional, Sequence
 
-from .common import ROOT, ToolError, bin_path, config_path, display_path, log, read_json, run_tool
+from .common import ROOT, ToolError, bin_path, config_path, display_path, json_number, log, read_json, run_tool
 from .evaluation import ATE, RPE_PER_SECOND, EvaluatedRun, Metric, RunRequest, evaluate_run, run_dynvo
 
 if TYPE_CHECKING:
@@ -59,6 +65,11 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
                         "instead of running it (its rpe.json and ate.json are rewritten)")
     parser.add_argument("--baseline-run", help="reuse this dynvo-cli run folder (baseline "
                         "config) instead of running it (its rpe.json and ate.json are rewritten)")
+    parser.add_argument("--trajectory", action="append", default=[], metavar="FILE",
+                        help="another system's trajectory of the same sequence (TUM format, e.g."
+                             " ORB-SLAM2's CameraTrajectory.txt), drawn beside dynvo's (repeatable)")
+    parser.add_argument("--label", action="append", default=[], metavar="NAME",
+                        help="the legend name of each --trajectory, in order (default: its file name)")
     parser.add_argument("--force", action="store_true",
                         help="overwrite existing figures and runs of an earlier call")
     parser.set_defaults(run=_figures_command)
@@ -227,7 +238,55 @@ def evaluate(dataset: str, run: str, name: str, work: str, force: bool) -> Evalu
     return Evaluated(evaluated, rpe, ate, pairs, aligned)
 
 
+@dataclass(frozen=True)
+class Curve:
+    """One trajectory as the figures draw it: legend, colour, RPE pairs, aligned poses, RMSEs."""
+    label: str
+    color: str
+    pairs: str              # rpe --pairs-out CSV
+    aligned: str            # ate --aligned-out trajectory
+    rpe_trans_m: float      # per-second RPE RMSE
+    rpe_rot_deg: float
+    ate_m: float            # ATE RMSE (Horn)
+
+
+def dynvo_curve(result: Evaluated, label: str, color: str) -> Curve:
+    """A dynvo run's curve."""
+    return Curve(label, color, result.pairs, result.aligned, result.rmse(result.rpe, "translational_error_m"),
+                 result.rmse(result.rpe, "rotational_error_deg"),
+                 result.rmse(result.ate, "absolute_translational_error_m"))
+
+
+def foreign_curves(dataset: str, paths: Sequence[str], labels: Sequence[str], work: str) -> list[Curve]:
+    """Other systems' trajectories, evaluated like dynvo's (files WORK/other_K_*)."""
+    if len(labels) > len(paths):
+        raise ToolError("%d --label for %d --trajectory: at most one per trajectory" % (len(labels), len(paths)))
+    groundtruth = os.path.join(dataset, "groundtruth.txt")
+    colors = ("tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
+    curves = []
+    for k, path in enumerate(paths):
+        if not os.path.isfile(path):
+            raise ToolError("--trajectory %s: no such file" % path)
+        label = labels[k] if k < len(labels) else os.path.splitext(os.path.basename(path))[0]
+        pairs, aligned = (os.path.join(work, "other_%d_%s" % (k, name)) for name in ("rpe_pairs.csv", "aligned.txt"))
+        rpe = json.loads(run_tool("RPE of " + label, [bin_path("rpe"), groundtruth, path, "--json", "--force",
+                                                      "--pairs-out", pairs]))
+        ate = json.loads(run_tool("ATE of " + label, [bin_path("ate"), groundtruth, path, "--json", "--force",
+                                                      "--aligned-out", aligned]))
+        curves.append(Curve(label, colors[k % len(colors)], pairs, aligned,
+                            json_number(COMMAND, path, rpe, "translational_error_m.rmse"),
+                            json_number(COMMAND, path, rpe, "rotational_error_deg.rmse"),
+                            json_number(COMMAND, path, ate, "absolute_translational_error_m.rmse")))
+    return curves
+
+
 # ---------------------------------------------------------------- figures
+
+
+def save_figure(fig: object, path: str, dpi: int) -> None:
+    """The figure as PATH (PNG) and beside it as PDF, for papers."""
+    fig.savefig(path, dpi=dpi)  # type: ignore[attr-defined]
+    fig.savefig(os.path.splitext(path)[0] + ".pdf")  # type: ignore[attr-defined]
 
 
 def ground_truth_dynamic_share(dataset: str, stamps: Sequence[float]) -> Optional[list[float]]:
@@ -245,9 +304,8 @@ def ground_truth_dynamic_share(dataset: str, stamps: Sequence[float]) -> Optiona
     return shares
 
 
-def plot_rpe_over_time(path: str, sequence: str, dataset: str, paper: Evaluated,
-                       baseline: Evaluated) -> None:
-    """fig_rpe_over_time.png: translational and rotational per-second RPE of both runs over
+def plot_rpe_over_time(path: str, sequence: str, dataset: str, paper: Evaluated, curves: Sequence[Curve]) -> None:
+    """fig_rpe_over_time.png: translational and rotational per-second RPE of every curve over
     time, the share of dynamic pixels (detected, and ground truth when masks.txt exists) below."""
     import matplotlib.pyplot as plt
     import numpy as np
@@ -255,16 +313,13 @@ def plot_rpe_over_time(path: str, sequence: str, dataset: str, paper: Evaluated,
     t0 = float(timing[0]["stamp"])
     fig, axes = plt.subplots(3, 1, figsize=(10, 8.5), sharex=True,
                              gridspec_kw={"height_ratios": [3, 2, 1.4]})
-    for result, label, color in ((baseline, "baseline (mask off)", BASELINE_COLOR),
-                                 (paper, "paper mode", PAPER_COLOR)):
-        pairs = read_csv(result.pairs)
+    for curve in curves:
+        pairs = read_csv(curve.pairs)
         t = np.array([float(p["stamp_est_0"]) for p in pairs]) - t0
         trans = np.array([float(p["trans_error_m"]) for p in pairs])
         rot = np.array([float(p["rot_error_deg"]) for p in pairs])
-        axes[0].plot(t, trans, color=color, lw=1.3, label="%s, RMSE %.4f m" % (
-            label, result.rmse(result.rpe, "translational_error_m")))
-        axes[1].plot(t, rot, color=color, lw=1.3, label="%s, RMSE %.3f deg" % (
-            label, result.rmse(result.rpe, "rotational_error_deg")))
+        axes[0].plot(t, trans, color=curve.color, lw=1.3, label="%s, RMSE %.4f m" % (curve.label, curve.rpe_trans_m))
+        axes[1].plot(t, rot, color=curve.color, lw=1.3, label="%s, RMSE %.3f deg" % (curve.label, curve.rpe_rot_deg))
     axes[0].set_ylabel("translational RPE (m per 1 s)")
     axes[1].set_ylabel("rotational RPE (deg per 1 s)")
     for ax in axes[:2]:
@@ -287,24 +342,21 @@ def plot_rpe_over_time(path: str, sequence: str, dataset: str, paper: Evaluated,
     axes[2].legend(loc="best", fontsize="small")
     fig.suptitle("Per-second RPE over time on %s\n(TUM evaluate_rpe.py, fixed delta of 1 s)" % sequence)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, 110)
     plt.close(fig)
 
 
-def plot_trajectory_top(path: str, sequence: str, dataset: str, paper: Evaluated,
-                        baseline: Evaluated) -> None:
-    """fig_trajectory_top.png: both aligned trajectories and the groundtruth in the plane of
+def plot_trajectory_top(path: str, sequence: str, dataset: str, curves: Sequence[Curve]) -> None:
+    """fig_trajectory_top.png: every aligned trajectory and the groundtruth in the plane of
     the two groundtruth axes with the most motion."""
     import matplotlib.pyplot as plt
     import numpy as np
     est_stamps = []
-    curves = []
-    for result, label, color in ((baseline, "baseline (mask off)", BASELINE_COLOR),
-                                 (paper, "paper mode", PAPER_COLOR)):
-        stamps, xyz = read_positions(result.aligned)
+    drawn = []
+    for curve in curves:
+        stamps, xyz = read_positions(curve.aligned)
         est_stamps.append(stamps)
-        curves.append((xyz, "%s, ATE RMSE %.4f m" % (
-            label, result.rmse(result.ate, "absolute_translational_error_m")), color))
+        drawn.append((xyz, "%s, ATE RMSE %.4f m" % (curve.label, curve.ate_m), curve.color))
     gt_stamps, gt_xyz = read_positions(os.path.join(dataset, "groundtruth.txt"))
     first = min(s[0] for s in est_stamps)
     last = max(s[-1] for s in est_stamps)
@@ -317,7 +369,7 @@ def plot_trajectory_top(path: str, sequence: str, dataset: str, paper: Evaluated
     names = "xyz"
     fig, ax = plt.subplots(figsize=(8, 7.5))
     ax.plot(gt_xyz[:, a], gt_xyz[:, b], color=GT_COLOR, lw=2.2, ls="--", label="groundtruth")
-    for xyz, label, color in curves:
+    for xyz, label, color in drawn:
         ax.plot(xyz[:, a], xyz[:, b], color=color, lw=1.4, label=label)
     ax.plot(gt_xyz[0, a], gt_xyz[0, b], "o", color=GT_COLOR, ms=7, label="start")
     ax.set_aspect("equal", adjustable="datalim")
@@ -328,7 +380,7 @@ def plot_trajectory_top(path: str, sequence: str, dataset: str, paper: Evaluated
     ax.set_title("Trajectories on %s, aligned onto the groundtruth\n(Horn rotation + "
                  "translation, no scale; the plane of the two axes with most motion)" % sequence)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, 110)
     plt.close(fig)
 
 
@@ -422,7 +474,7 @@ def plot_mask_panels(path: str, sequence: str, dataset: str, paper_run: str,
     blocks = fig.subfigures(len(frames), 1, squeeze=False)[:, 0]
     for block, frame in zip(blocks, frames):
         draw_panel_block(block, sources, sequence, frame)
-    fig.savefig(path, dpi=80)
+    save_figure(fig, path, 80)
     plt.close(fig)
     # Photographic tiles compress poorly as true colour: a 256-colour palette keeps the
     # committed figure near 300 KB instead of 1.5 MB, with no visible loss at this size.
@@ -515,9 +567,12 @@ def _figures_command(args: argparse.Namespace) -> int:
     paper = evaluate(plan.dataset, paper_run, "paper", plan.work, args.force)
     baseline = evaluate(plan.dataset, baseline_run, "baseline", plan.work, args.force)
 
+    curves = [dynvo_curve(baseline, "baseline (mask off)", BASELINE_COLOR),
+              dynvo_curve(paper, "paper mode", PAPER_COLOR)]
+    curves += foreign_curves(plan.dataset, args.trajectory, args.label, plan.work)
     written = [os.path.join(plan.out, name) for name in FIGURES]
-    plot_rpe_over_time(written[0], plan.sequence, plan.dataset, paper, baseline)
-    plot_trajectory_top(written[1], plan.sequence, plan.dataset, paper, baseline)
+    plot_rpe_over_time(written[0], plan.sequence, plan.dataset, paper, curves)
+    plot_trajectory_top(written[1], plan.sequence, plan.dataset, curves)
     if plan.frames:
         plot_mask_panels(written[2], plan.sequence, plan.dataset, paper_run, plan.frames)
     else:
