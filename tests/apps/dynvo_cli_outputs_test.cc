@@ -19,9 +19,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "small_sequence.h"
 #include "support/temp_dir.h"
-#include "synth/synthetic_sequence.h"
-#include "synth/tum_writer.h"
 
 namespace dynvo {
 namespace {
@@ -29,21 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string Config(const std::string& name) { return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name; }
-
-// A small generated sequence of `frames` frames at 320x240.
-std::string MakeSequence(const test::TempDir& dir, int frames) {
-  SyntheticSequenceOptions options;
-  options.frames = frames;
-  options.camera.width = 320;
-  options.camera.height = 240;
-  options.camera.fx = options.camera.fy = 270;
-  options.camera.cx = 160;
-  options.camera.cy = 120;
-  const std::string folder = (dir.path() / "seq").string();
-  PrepareOutputFolder(folder, /*force=*/false);
-  WriteSyntheticSequence(options, folder);
-  return folder;
-}
 
 std::string Text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -109,7 +93,7 @@ class DynvoCliOutputs : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir;
-    seq_ = MakeSequence(*dir_, 150);
+    seq_ = test::MakeSmallSequence(*dir_, 150);
   }
   static void TearDownTestSuite() { delete dir_; }
   static test::TempDir* dir_;

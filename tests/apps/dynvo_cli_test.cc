@@ -11,10 +11,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "small_sequence.h"
 #include "support/run_tool.h"
 #include "support/temp_dir.h"
-#include "synth/synthetic_sequence.h"
-#include "synth/tum_writer.h"
 
 namespace dynvo {
 namespace {
@@ -26,21 +25,6 @@ std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
 std::string Config(const std::string& name) { return std::string(DYNVO_SOURCE_DIR) + "/configs/" + name; }
 
-// A short, small generated sequence: enough frames to run, not to measure accuracy.
-std::string MakeSequence(const test::TempDir& dir) {
-  SyntheticSequenceOptions options;
-  options.frames = 8;
-  options.camera.width = 320;
-  options.camera.height = 240;
-  options.camera.fx = options.camera.fy = 270;
-  options.camera.cx = 160;
-  options.camera.cy = 120;
-  const std::string folder = (dir.path() / "seq").string();
-  PrepareOutputFolder(folder, /*force=*/false);
-  WriteSyntheticSequence(options, folder);
-  return folder;
-}
-
 // One line on stderr, starting with the program's name, containing `needle`; exit code 1.
 void ExpectOneLineError(const ToolOutcome& o, const std::string& needle) {
   EXPECT_EQ(o.exit_code, 1) << o.err;
@@ -51,7 +35,7 @@ void ExpectOneLineError(const ToolOutcome& o, const std::string& needle) {
 
 TEST(DynvoCli, RunsAndWritesOutputs) {
   test::TempDir dir;
-  const std::string seq = MakeSequence(dir);
+  const std::string seq = test::MakeSmallSequence(dir, 8);
   const std::string out = (dir.path() / "out").string();
   const ToolOutcome o = RunTool(
       dir, "dynvo-cli",
@@ -73,7 +57,7 @@ TEST(DynvoCli, RunsAndWritesOutputs) {
 
 TEST(DynvoCli, BadInputsGetOneClearError) {
   test::TempDir dir;
-  const std::string seq = MakeSequence(dir);
+  const std::string seq = test::MakeSmallSequence(dir, 8);
   const std::string out = " --out " + Quote((dir.path() / "o").string());
   const std::string run = "run --quiet --dataset " + Quote(seq) + out;
 
@@ -140,7 +124,7 @@ TEST(DynvoCli, EveryProgramTellsItsVersionAndCommit) {
     EXPECT_EQ(o.out.rfind(std::string(program) + " 0.1.0 (commit ", 0), 0u) << program << ": " << o.out;
   }
   // run.json records the same.
-  const std::string seq = MakeSequence(dir);
+  const std::string seq = test::MakeSmallSequence(dir, 8);
   const std::string out = (dir.path() / "out").string();
   ASSERT_EQ(RunTool(dir, "dynvo-cli", "run --quiet --dataset " + Quote(seq) + " --out " + Quote(out)).exit_code, 0);
   const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/run.json"));

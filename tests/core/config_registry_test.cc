@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "support/input_error.h"
 
 namespace dynvo {
 namespace {
@@ -26,15 +27,6 @@ ConfigRegistry Registry(Fields* f) {
   return r;
 }
 
-std::string ErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(ConfigRegistry, AppliesNestedKeysAndSkipsComments) {
   Fields f;
   ConfigRegistry r = Registry(&f);
@@ -51,7 +43,7 @@ TEST(ConfigRegistry, AppliesNestedKeysAndSkipsComments) {
 TEST(ConfigRegistry, UnknownKeyNamesKeyAndSource) {
   Fields f;
   ConfigRegistry r = Registry(&f);
-  const std::string msg = ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"stage": {"cout": 1}})"), "c.json"); });
+  const std::string msg = test::InputErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"stage": {"cout": 1}})"), "c.json"); });
   EXPECT_NE(msg.find("c.json"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown key 'stage.cout'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("stage.count"), std::string::npos) << "suggests the section's keys: " << msg;
@@ -60,22 +52,22 @@ TEST(ConfigRegistry, UnknownKeyNamesKeyAndSource) {
 TEST(ConfigRegistry, WrongTypesAreRejectedWithKey) {
   Fields f;
   ConfigRegistry r = Registry(&f);
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(test::InputErrorOf([&] {
               r.Apply(nlohmann::json::parse(R"({"stage": {"count": 1.5}})"), "c.json");
             }).find("key 'stage.count' expects an integer, got 1.5"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(test::InputErrorOf([&] {
               r.Apply(nlohmann::json::parse(R"({"stage": {"on": 1}})"), "c.json");
             }).find("key 'stage.on' expects true or false"),
             std::string::npos);
   EXPECT_NE(
-      ErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"other": {"seed": -1}})"), "c.json"); }).find("'other.seed'"),
+      test::InputErrorOf([&] { r.Apply(nlohmann::json::parse(R"({"other": {"seed": -1}})"), "c.json"); }).find("'other.seed'"),
       std::string::npos);
-  EXPECT_NE(ErrorOf([&] {
+  EXPECT_NE(test::InputErrorOf([&] {
               r.Apply(nlohmann::json::parse(R"({"other": {"mode": "c"}})"), "c.json");
             }).find("one of \"a\", \"b\""),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.Apply(nlohmann::json::parse("[1]"), "c.json"); }).find("JSON object"), std::string::npos);
+  EXPECT_NE(test::InputErrorOf([&] { r.Apply(nlohmann::json::parse("[1]"), "c.json"); }).find("JSON object"), std::string::npos);
   EXPECT_EQ(f.count, 3) << "a rejected value leaves the field alone";
 }
 
@@ -90,8 +82,8 @@ TEST(ConfigRegistry, OverridesParseJsonOrText) {
   EXPECT_FALSE(f.on);
   EXPECT_EQ(f.mode, "b");
   EXPECT_DOUBLE_EQ(f.ratio, 1e-3);
-  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("stage.count"); }).find("expected key=value"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("nope=1"); }).find("--set: unknown key 'nope'"), std::string::npos);
+  EXPECT_NE(test::InputErrorOf([&] { r.ApplyOverride("stage.count"); }).find("expected key=value"), std::string::npos);
+  EXPECT_NE(test::InputErrorOf([&] { r.ApplyOverride("nope=1"); }).find("--set: unknown key 'nope'"), std::string::npos);
 }
 
 TEST(ConfigRegistry, IntegerListsTakeJsonArraysOnly) {
@@ -102,9 +94,9 @@ TEST(ConfigRegistry, IntegerListsTakeJsonArraysOnly) {
   EXPECT_EQ(classes, (std::vector<int>{0, 2, 7}));
   r.Apply(nlohmann::json::parse(R"({"detector": {"classes": []}})"), "c.json");
   EXPECT_TRUE(classes.empty());
-  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("detector.classes=3"); }).find("expects a list of integers, got 3"),
+  EXPECT_NE(test::InputErrorOf([&] { r.ApplyOverride("detector.classes=3"); }).find("expects a list of integers, got 3"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { r.ApplyOverride("detector.classes=[1.5]"); }).find("expects an integer, got 1.5"),
+  EXPECT_NE(test::InputErrorOf([&] { r.ApplyOverride("detector.classes=[1.5]"); }).find("expects an integer, got 1.5"),
             std::string::npos);
   EXPECT_EQ(r.ToJson()["detector"]["classes"], nlohmann::json::array());
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "support/input_error.h"
 #include "support/temp_dir.h"
 
 namespace dynvo {
@@ -18,15 +19,6 @@ std::string Content(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-std::string ErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(AppendedFile, AppendsAndAFullDiskIsAnErrorNamingTheFile) {
@@ -41,10 +33,10 @@ TEST(AppendedFile, AppendsAndAFullDiskIsAnErrorNamingTheFile) {
   EXPECT_EQ(Content(path), "1 2\n3 4\n");
   // /dev/full takes the open and refuses every write with ENOSPC, as a full disk does.
   AppendedFile full("/dev/full");
-  const std::string error = ErrorOf([&] { full.Append("1 2\n"); });
+  const std::string error = test::InputErrorOf([&] { full.Append("1 2\n"); });
   EXPECT_EQ(error.rfind("/dev/full: write failed (disk full?)", 0), 0u) << error;
   EXPECT_EQ(
-      ErrorOf([&] { AppendedFile(path + "/inside_a_file"); }).rfind(path + "/inside_a_file: cannot write file", 0), 0u);
+      test::InputErrorOf([&] { AppendedFile(path + "/inside_a_file"); }).rfind(path + "/inside_a_file: cannot write file", 0), 0u);
 }
 
 TEST(WriteFileAtomically, ReplacesTheWholeFileAndLeavesNoTemporary) {
@@ -55,7 +47,7 @@ TEST(WriteFileAtomically, ReplacesTheWholeFileAndLeavesNoTemporary) {
   EXPECT_EQ(Content(path), "{}\n");
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
   const std::string nowhere = (dir.path() / "run.json" / "x.json").string();  // parent is a file
-  EXPECT_EQ(ErrorOf([&] { WriteFileAtomically(nowhere, "{}"); }).rfind(nowhere + ": cannot write file", 0), 0u);
+  EXPECT_EQ(test::InputErrorOf([&] { WriteFileAtomically(nowhere, "{}"); }).rfind(nowhere + ": cannot write file", 0), 0u);
   EXPECT_EQ(Content(path), "{}\n");
 }
 

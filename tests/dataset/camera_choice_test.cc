@@ -8,34 +8,25 @@
 #include "core/config_registry.h"
 #include "core/error.h"
 #include "dataset/camera_file.h"
+#include "support/input_error.h"
 #include "support/temp_dir.h"
 
 namespace dynvo {
 namespace {
 
-std::string ErrorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
-
 TEST(CameraChoice, CheckRefusesUnknownSourcesAndIntrinsicsItWouldIgnore) {
   CameraChoice choice;
   EXPECT_NO_THROW(choice.Check());
   choice.source = "kinect";
-  EXPECT_NE(ErrorOf([&] { choice.Check(); }).find("camera.source must be one of \"fr1\", \"fr2\""), std::string::npos);
+  EXPECT_NE(test::InputErrorOf([&] { choice.Check(); }).find("camera.source must be one of \"fr1\", \"fr2\""), std::string::npos);
   choice = {};
   choice.source = "fr1";
   choice.custom.cy = 250;
-  EXPECT_EQ(ErrorOf([&] { choice.Check(); }).rfind("camera.cy is set but camera.source is \"fr1\"", 0), 0u);
+  EXPECT_EQ(test::InputErrorOf([&] { choice.Check(); }).rfind("camera.cy is set but camera.source is \"fr1\"", 0), 0u);
   choice.source = "custom";
   EXPECT_NO_THROW(choice.Check());
   choice.custom.height = 0;
-  EXPECT_NE(ErrorOf([&] { choice.Check(); }).find("camera (source \"custom\")"), std::string::npos);
+  EXPECT_NE(test::InputErrorOf([&] { choice.Check(); }).find("camera (source \"custom\")"), std::string::npos);
 }
 
 TEST(CameraChoice, AutoReadsTheFolderThenItsNameAndRecordsTheOrigin) {
@@ -61,7 +52,7 @@ TEST(CameraChoice, AutoReadsTheFolderThenItsNameAndRecordsTheOrigin) {
   const std::string own_folder = (dir.path() / "kitchen").string();
   std::filesystem::create_directories(own_folder);
   EXPECT_EQ(
-      ErrorOf([&] { ChooseCamera(own_folder, "kitchen", {}, 0); }).rfind(own_folder + ": cannot tell its camera", 0),
+      test::InputErrorOf([&] { ChooseCamera(own_folder, "kitchen", {}, 0); }).rfind(own_folder + ": cannot tell its camera", 0),
       0u);
 }
 

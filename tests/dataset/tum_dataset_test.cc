@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "dataset/camera_file.h"
 #include "dataset/known_cameras.h"
+#include "support/input_error.h"
 #include "support/temp_dir.h"
 #include "tum_test_folder.h"
 
@@ -23,36 +24,23 @@ using test::TumTestFolder;
 using test::TumTestFolderSpec;
 using test::WriteTumTestFolder;
 
-// Runs `action` and returns the InputError message it throws; fails the test when it throws
-// nothing.
-template <typename Action>
-std::string InputErrorOf(Action action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
-
 bool Contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(TumDatasetOptions, CheckNamesTheKey) {
   TumDatasetOptions options;
   EXPECT_NO_THROW(options.Check());
   options.max_time_difference = 0;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }), "dataset.max_time_difference"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { options.Check(); }), "dataset.max_time_difference"));
   options.max_time_difference = NAN;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }), "dataset.max_time_difference"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { options.Check(); }), "dataset.max_time_difference"));
   options = {};
   options.depth_factor = -5000;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }),
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { options.Check(); }),
                        "dataset.depth_factor must be >= 0 (PNG value per metre; 0: by the camera), got -5000"));
   options = {};
   options.camera.source = "custom";
   options.camera.custom.fx = 0;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { options.Check(); }), "camera (source \"custom\")"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { options.Check(); }), "camera (source \"custom\")"));
 }
 
 TEST(TumDataset, LoadsAssociatedFramesWithDepthInMetres) {
@@ -133,7 +121,7 @@ TEST(TumDataset, AssociationHonoursMaxTimeDifference) {
   EXPECT_EQ(TumDataset(seq.folder).size(), 4u);
   TumDatasetOptions options;
   options.max_time_difference = 0.01;
-  const std::string message = InputErrorOf([&] { TumDataset(seq.folder, options); });
+  const std::string message = test::InputErrorOf([&] { TumDataset(seq.folder, options); });
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt")) << message;
   EXPECT_TRUE(Contains(message, "dataset.max_time_difference")) << message;
 
@@ -160,13 +148,13 @@ TEST(TumDataset, ListsWithCommentsCrlfAndExtraSpaces) {
 TEST(TumDataset, FolderAndListErrorsNameThePath) {
   TempDir dir;
   const std::string missing = (dir.path() / "nowhere").string();
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{missing}; }), missing + ": no such folder"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{missing}; }), missing + ": no such folder"));
 
   const TumTestFolder seq = WriteTumTestFolder(dir, {});
   std::filesystem::remove(seq.folder + "/depth.txt");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/depth.txt: missing file"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/depth.txt: missing file"));
   std::filesystem::remove(seq.folder + "/rgb.txt");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt: missing file"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt: missing file"));
 }
 
 TEST(TumDataset, BadListLinesNameFileAndLine) {
@@ -175,14 +163,14 @@ TEST(TumDataset, BadListLinesNameFileAndLine) {
   // WriteList puts two comment lines first: data lines are 3, 4, 5.
   test::WriteList(seq.folder, "depth.txt", {seq.depth_stamps[0], seq.depth_stamps[2], seq.depth_stamps[1]},
                   {seq.depth_files[0], seq.depth_files[2], seq.depth_files[1]});
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }),
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }),
                        seq.folder + "/depth.txt:5: timestamps must strictly increase"));
   dir.Write("synthetic/rgb.txt", "# c\n100.0 rgb/a.png\n100.1\n");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt:3: expected 2 columns"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt:3: expected 2 columns"));
   dir.Write("synthetic/groundtruth.txt", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0\n");
   test::WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, seq.rgb_files);
   test::WriteList(seq.folder, "depth.txt", seq.depth_stamps, seq.depth_files);
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/groundtruth.txt:2:"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/groundtruth.txt:2:"));
   dir.Write("synthetic/groundtruth.txt", "# gt\n1 0 0 0 0 0 0 1\n2 0.5 0 0 0 0 0 1\n");
   const TumDataset dataset(seq.folder);
   EXPECT_TRUE(dataset.has_groundtruth());
@@ -203,20 +191,20 @@ TEST(TumDataset, ImageErrorsNameThePng) {
   dir.Write("synthetic/" + seq.depth_files[4], "not a png");
   test::WriteImage(png(seq.depth_files[5]), cv::Mat(480, 641, CV_16UC1, cv::Scalar(3)));
   const TumDataset dataset(seq.folder);  // images are read by Load, not by the constructor
-  std::string message = InputErrorOf([&] { dataset.Load(0); });
+  std::string message = test::InputErrorOf([&] { dataset.Load(0); });
   EXPECT_TRUE(Contains(message, png(seq.rgb_files[0]) + ": missing image")) << message;
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt:3")) << message;
-  message = InputErrorOf([&] { dataset.Load(1); });
+  message = test::InputErrorOf([&] { dataset.Load(1); });
   EXPECT_TRUE(
       Contains(message, png(seq.depth_files[1]) + ": depth image must be 16-bit 1-channel, got 8-bit 1-channel"))
       << message;
-  message = InputErrorOf([&] { dataset.Load(2); });
+  message = test::InputErrorOf([&] { dataset.Load(2); });
   EXPECT_TRUE(Contains(message, png(seq.rgb_files[2]) + ": image is 320x240, the camera is 640x480")) << message;
-  message = InputErrorOf([&] { dataset.Load(3); });
+  message = test::InputErrorOf([&] { dataset.Load(3); });
   EXPECT_TRUE(Contains(message, png(seq.rgb_files[3]) + ": RGB image must be 8-bit")) << message;
-  message = InputErrorOf([&] { dataset.Load(4); });
+  message = test::InputErrorOf([&] { dataset.Load(4); });
   EXPECT_TRUE(Contains(message, png(seq.depth_files[4]) + ": cannot decode image")) << message;
-  message = InputErrorOf([&] { dataset.Load(5); });
+  message = test::InputErrorOf([&] { dataset.Load(5); });
   EXPECT_TRUE(Contains(message, png(seq.depth_files[5]) + ": image is 641x480")) << message;
 }
 
@@ -229,7 +217,7 @@ TEST(TumDataset, AnImageNameTooLongIsAnInputErrorNamingIt) {
   test::WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, {seq.rgb_files[0], long_name});
   const TumDataset dataset(seq.folder);
   EXPECT_NO_THROW(dataset.Load(0));
-  const std::string error = InputErrorOf([&] { dataset.Load(1); });
+  const std::string error = test::InputErrorOf([&] { dataset.Load(1); });
   EXPECT_EQ(error.rfind(seq.folder + "/" + long_name + ": cannot examine: File name too long", 0), 0u) << error;
   EXPECT_TRUE(Contains(error, "rgb.txt:")) << error;
 }
@@ -288,7 +276,7 @@ TEST(TumDataset, CameraPrecedenceConfigThenFileThenName) {
   EXPECT_EQ(from_named.depth_factor(), 5208.0);
 
   dir.Write(spec.name + "/camera.json", R"({"width":640,"height":480,"fx":500})");
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
 
   // A trailing separator does not change the name, hence the camera.
   std::filesystem::remove(seq.folder + "/camera.json");
@@ -304,7 +292,7 @@ TEST(TumDataset, AFolderWhoseCameraCannotBeToldIsAnErrorThatSaysHowToGiveIt) {
   spec.camera_json = false;
   spec.frames = 1;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
-  const std::string error = InputErrorOf([&] { TumDataset{seq.folder}; });
+  const std::string error = test::InputErrorOf([&] { TumDataset{seq.folder}; });
   EXPECT_EQ(error.rfind(seq.folder + ": cannot tell its camera", 0), 0u) << error;
   for (const char* way : {"camera.json", "--set camera.source=custom", "ros_default"})
     EXPECT_TRUE(Contains(error, way)) << way << " missing from: " << error;
@@ -317,7 +305,7 @@ TEST(TumDataset, AFolderWhoseCameraCannotBeToldIsAnErrorThatSaysHowToGiveIt) {
   // Intrinsics given while the source would ignore them are refused, naming the key.
   TumDatasetOptions ignored;
   ignored.camera.custom.fx = 600;
-  EXPECT_TRUE(Contains(InputErrorOf([&] { TumDataset(seq.folder, ignored); }),
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset(seq.folder, ignored); }),
                        "camera.fx is set but camera.source is \"auto\""));
 }
 
@@ -446,7 +434,7 @@ TEST(TumDataset, MasksByRgbStamp) {
   spec.frames = 3;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
   EXPECT_TRUE(
-      Contains(InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }), seq.folder + "/masks.txt: missing file"));
+      Contains(test::InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }), seq.folder + "/masks.txt: missing file"));
 
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask(cv::Rect(10, 20, 30, 40)).setTo(255);
@@ -458,10 +446,10 @@ TEST(TumDataset, MasksByRgbStamp) {
   const cv::Mat loaded = dataset.LoadMask(0);
   ASSERT_EQ(loaded.type(), CV_8UC1);
   EXPECT_EQ(cv::norm(loaded, mask, cv::NORM_INF), 0.0);
-  std::string message = InputErrorOf([&] { dataset.LoadMask(1); });
+  std::string message = test::InputErrorOf([&] { dataset.LoadMask(1); });
   EXPECT_TRUE(Contains(message, seq.folder + "/masks.txt: no mask entry")) << message;
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt:4")) << message;
-  message = InputErrorOf([&] { dataset.LoadMask(2); });
+  message = test::InputErrorOf([&] { dataset.LoadMask(2); });
   EXPECT_TRUE(Contains(message, seq.folder + "/masks/c.png: mask must be 8-bit 1-channel")) << message;
 }
 
