@@ -1,6 +1,5 @@
 #include "odometry/debug_panels_writer.h"
 
-#include <cstdio>
 #include <fstream>
 #include <utility>
 #include <vector>
@@ -9,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace dynvo {
 namespace {
@@ -49,12 +49,9 @@ const char* StatusName(DebugFeature::Status status) {
 void WriteFeatureList(const std::string& path, const std::vector<DebugFeature>& features) {
   std::ofstream out(path);
   out << "x,y,octave,depth_m,status,inlier\n";
-  char line[128];
-  for (const DebugFeature& f : features) {
-    std::snprintf(line, sizeof(line), "%.2f,%.2f,%d,%.4f,%s,%d\n", f.pixel.x, f.pixel.y, f.octave, f.depth_m,
-                  StatusName(f.status), f.inlier ? 1 : 0);
-    out << line;
-  }
+  for (const DebugFeature& f : features)
+    out << FixedText(f.pixel.x, 2) << ',' << FixedText(f.pixel.y, 2) << ',' << f.octave << ','
+        << FixedText(f.depth_m, 4) << ',' << StatusName(f.status) << ',' << (f.inlier ? 1 : 0) << '\n';
   out.flush();
   if (!out) ThrowFileError(path, 0, "cannot write the feature list");
 }
@@ -79,7 +76,6 @@ cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
   if (!mask.mask.empty()) canvas.setTo(cv::Scalar(0, 0, 255), mask.mask);
   cv::addWeighted(bgr, 0.6, canvas, 0.4, 0.0, canvas);
   const bool judged = mask.people_moving.has_value();
-  char label[48];
   for (size_t i = 0; i < mask.people.size(); ++i) {
     const Detection& person = mask.people[i];
     const char* state = !judged ? "" : (*mask.people_moving)[i] ? " moving" : " still";
@@ -87,7 +83,7 @@ cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
                              : (*mask.people_moving)[i] ? cv::Scalar(0, 0, 255)
                                                      : cv::Scalar(0, 200, 0);
     cv::rectangle(canvas, person.box, color, 2);
-    std::snprintf(label, sizeof(label), "%.2f%s", person.score, state);
+    const std::string label = FixedText(person.score, 2) + state;
     cv::putText(canvas, label, cv::Point(person.box.tl()) + cv::Point(2, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5, color, 1);
   }
   return canvas;
@@ -126,8 +122,8 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
       ListDebugFeatures(processed.stages.features.split, processed.stages.tracking);
   const cv::Mat& current_bgr = frame.bgr;
   const std::string& dir = dir_;
-  char prefix[64];
-  std::snprintf(prefix, sizeof(prefix), "/frame_%06zu_", frame.index);
+  const std::string number = std::to_string(frame.index);
+  const std::string prefix = "/frame_" + std::string(number.size() < 6 ? 6 - number.size() : 0, '0') + number + "_";
   const bool detected = mask.status == MaskStatus::kDetected;  // the detector's boxes instead of the compensation
   const std::vector<std::pair<std::string, cv::Mat>> named = {
       {detected ? "detections" : "compensated", detected ? DrawDetections(current_bgr, mask) : mask.compensated},
