@@ -19,6 +19,7 @@ import tempfile
 from dataclasses import dataclass
 
 from .common import ToolError, bin_path, display_path, json_number, log, run_tool, write_atomically
+from .figures import check_plotting
 
 PROG = "compare"
 OUTPUTS = ("compare.md", "compare.csv", "compare.json")
@@ -137,6 +138,7 @@ def tables(evaluated: list[Evaluated], args: argparse.Namespace) -> dict[str, st
 
 def run(args: argparse.Namespace) -> int:
     """Evaluates every estimate, writes the tables and plots, prints the Markdown table."""
+    check_plotting("tools/compare.sh")
     labels = labels_of(args)
     if not os.path.isfile(args.groundtruth):
         raise ToolError("%s: no such file" % display_path(args.groundtruth))

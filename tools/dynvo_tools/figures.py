@@ -160,8 +160,9 @@ class Evaluated:
         return self.run.rmse(dataclasses.replace(metric, field=field))
 
 
-def check_plotting() -> None:
-    """matplotlib (with the Agg backend) and numpy can be imported, else a ToolError."""
+def check_plotting(wrapper: str = "tools/figures.sh") -> None:
+    """matplotlib (with the Agg backend) and numpy can be imported, else a ToolError that
+    names the shell wrapper running Debian's python3."""
     try:
         import importlib
         import matplotlib
@@ -169,7 +170,7 @@ def check_plotting() -> None:
         importlib.import_module("numpy")
     except ImportError as error:
         raise ToolError("%s: run with Debian's python3 (apt install python3-matplotlib "
-                        "python3-numpy), e.g. via bash tools/figures.sh" % error) from None
+                        "python3-numpy), e.g. via bash %s" % (error, wrapper)) from None
 
 
 def prepare_dataset(args: argparse.Namespace) -> str:
