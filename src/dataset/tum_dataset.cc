@@ -6,7 +6,6 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "core/config_registry.h"
 #include "core/error.h"
@@ -21,12 +20,6 @@ namespace fs = std::filesystem;
 
 // Mask stamps are written from the RGB stamps; this absorbs formatting differences only.
 constexpr double kMaskStampTolerance = 1e-4;  // s
-
-std::string Number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 std::string Stamp(double stamp) { return StampText(stamp); }
 
@@ -51,10 +44,10 @@ std::string TypeName(const cv::Mat& image) {
 
 void TumDatasetOptions::Check() const {
   if (!std::isfinite(max_time_difference) || !(max_time_difference > 0))
-    throw InputError("dataset.max_time_difference must be > 0 (seconds), got " + Number(max_time_difference));
+    throw InputError("dataset.max_time_difference must be > 0 (seconds), got " + ShortText(max_time_difference));
   if (!std::isfinite(depth_factor) || !(depth_factor >= 0))
     throw InputError("dataset.depth_factor must be >= 0 (PNG value per metre; 0: by the camera), got " +
-                     Number(depth_factor));
+                     ShortText(depth_factor));
   camera.Check();
 }
 
@@ -106,7 +99,7 @@ TumDataset::TumDataset(const std::string& folder, const TumDatasetOptions& optio
   if (frames_.empty())
     ThrowFileError(rgb_list_, 0,
                    "no RGB frame (of " + std::to_string(rgb_.size()) + ") has a depth frame in " + depth_list_ +
-                       " closer than dataset.max_time_difference = " + Number(options_.max_time_difference) + " s");
+                       " closer than dataset.max_time_difference = " + ShortText(options_.max_time_difference) + " s");
   unmatched_rgb_ = rgb_.size() - frames_.size();
 
   const std::string groundtruth = (fs::path(folder_) / "groundtruth.txt").string();

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "dataset/camera_file.h"
 #include "dataset/image_list.h"
 #include "dataset/stamp_matching.h"
@@ -23,16 +23,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string Number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 void RequireRange(double value, double lo, double hi, const char* key) {
   if (!(value >= lo && value <= hi))
-    throw InputError(std::string("insert.") + key + " must be in [" + Number(lo) + ", " + Number(hi) + "], got " +
-                     Number(value));
+    throw InputError(std::string("insert.") + key + " must be in [" + ShortText(lo) + ", " + ShortText(hi) + "], got " +
+                     ShortText(value));
 }
 
 void CopyFile(const fs::path& from, const fs::path& to) {
