@@ -1,4 +1,5 @@
-// Cost of each step of the dynamic-mask front end and of feature extraction run alone, one
+// Cost of each step of the dynamic-mask front end, of feature extraction and of line segments
+// run alone, one
 // after the other (OpenCV still splits some steps over its own threads), on consecutive frame
 // pairs of a sequence: where the per-frame milliseconds of the paper pipeline go before the
 // pipeline's threads overlap them. Prints the median ms over frame pairs of each step.
@@ -29,6 +30,8 @@
 #include "ego_motion/klt_tracker.h"
 #include "features/feature_extractor.h"
 #include "features/feature_filter.h"
+#include "lines/line_extractor.h"
+#include "lines/line_from_depth.h"
 #include "odometry/odometry_config.h"
 #include "sample_statistics.h"
 #include "synth/trajectory_sampling.h"
@@ -131,6 +134,23 @@ void TimeDepthChange(const std::vector<dynvo::RgbdFrame>& frames, size_t i, cons
   });
 }
 
+// Times line segments on frame i: detection with LBD description at the default half
+// resolution and at full resolution, then 3D lines from depth of the default's lines.
+void TimeLines(const dynvo::RgbdFrame& frame, const dynvo::Camera& camera, StepTimes& steps) {
+  dynvo::LineExtractorOptions full;
+  full.detect_level = 0;
+  steps.Time("lines: FLD full + LBD", [&] { return dynvo::ExtractLines(frame.gray, cv::Mat(), camera, full); });
+  const dynvo::FrameLines lines =
+      steps.Time("lines: FLD half + LBD", [&] { return dynvo::ExtractLines(frame.gray, cv::Mat(), camera, {}); });
+  if (frame.depth.empty()) return;
+  steps.Time("lines: 3D from depth", [&] {
+    int found = 0;
+    for (size_t k = 0; k < lines.size(); ++k)
+      found += dynvo::LineFromDepth(lines.detected[k], lines.segments[k], frame.depth, camera, {}).has_value();
+    return found;
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -165,6 +185,7 @@ int main(int argc, char** argv) {
                                                mask.current_from_previous, dynvo::kBackgroundFillMarginPx, area);
         });
       TimeDepthChange(frames, i, dataset, config.depth_change, steps);
+      TimeLines(frames[i], dataset.camera(), steps);
     }
     std::printf("stage_costs: %zu frame pairs of %s, config %s\n", frames.size() - 1, dataset.name().c_str(),
                 config_path.empty() ? "built-in" : config_path.c_str());

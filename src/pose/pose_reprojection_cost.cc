@@ -1,9 +1,9 @@
 #include "pose/pose_reprojection_cost.h"
 
-#include <cmath>
 #include <utility>
 
 #include "core/error.h"
+#include "pose/huber_residual.h"
 #include "pose/rotation_jacobian.h"
 
 namespace dynvo {
@@ -35,7 +35,6 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
   const Eigen::Map<const Eigen::Vector3d> t(parameters[1]);
   double* j_q = jacobians != nullptr ? jacobians[0] : nullptr;  // rows of 4, row-major
   double* j_t = jacobians != nullptr ? jacobians[1] : nullptr;  // rows of 3
-  const double delta_squared = delta_ * delta_;
   const bool want_jacobians = j_q != nullptr || j_t != nullptr;
   for (size_t k = 0; k < use_.size(); ++k) {
     const int i = use_[k];
@@ -45,23 +44,13 @@ bool PoseReprojectionCost::Evaluate(double const* const* parameters, double* res
     const Eigen::Vector2d e =
         in_front ? Eigen::Vector2d(fx_ * p.x() * iz + cx_ - observed_[i].x(), fy_ * p.y() * iz + cy_ - observed_[i].y())
                  : Eigen::Vector2d(1e3, 1e3);
-    // Huber: rho(s) = s inside, 2 delta sqrt(s) - delta^2 outside; r = w e with w^2 = rho(s) / s.
-    const double s = e.squaredNorm();
-    const bool outside = s > delta_squared;
-    const double root_s = outside ? std::sqrt(s) : 0.0;
-    const double w = outside ? std::sqrt(2.0 * delta_ / root_s - delta_squared / s) : 1.0;
-    Eigen::Map<Eigen::Vector2d>(residuals + 2 * k) = w * e;
+    const HuberResidual huber = ScaleByHuber(e, delta_);
+    Eigen::Map<Eigen::Vector2d>(residuals + 2 * k) = huber.residual;
     if (!want_jacobians) continue;
 
     Eigen::Matrix<double, 2, 3> de_dp = Eigen::Matrix<double, 2, 3>::Zero();  // zero behind the camera
     if (in_front) de_dp << fx_ * iz, 0.0, -fx_ * p.x() * iz * iz, 0.0, fy_ * iz, -fy_ * p.y() * iz * iz;
-    Eigen::Matrix2d dr_de = Eigen::Matrix2d::Identity();
-    if (outside) {
-      // dw/ds = (-delta s^-3/2 + delta^2 s^-2) / (2 w); dr/de = w I + 2 (dw/ds) e e^T.
-      const double dw_ds = (-delta_ / (s * root_s) + delta_squared / (s * s)) / (2.0 * w);
-      dr_de = w * Eigen::Matrix2d::Identity() + 2.0 * dw_ds * e * e.transpose();
-    }
-    const Eigen::Matrix<double, 2, 3> dr_dp = dr_de * de_dp;
+    const Eigen::Matrix<double, 2, 3> dr_dp = huber.dr_de * de_dp;
     if (j_q != nullptr)
       Eigen::Map<Eigen::Matrix<double, 2, 4, Eigen::RowMajor>>(j_q + 8 * k) =
           dr_dp * RotatedPointJacobian(q, points_[i]);

@@ -12,6 +12,7 @@
 #include "core/config_registry.h"
 #include "core/error.h"
 #include "estimators/ransac.h"
+#include "pose/pose_line_cost.h"
 #include "pose/pose_reprojection_cost.h"
 
 namespace dynvo {
@@ -127,6 +128,7 @@ void PoseSolverOptions::Check() const {
   Require(refine_rounds >= 1, "refine_rounds", ">= 1", refine_rounds);
   Require(std::isfinite(outlier_threshold_px) && outlier_threshold_px > 0.0, "outlier_threshold_px", "> 0",
           outlier_threshold_px);
+  Require(std::isfinite(line_weight) && line_weight > 0.0, "line_weight", "> 0", line_weight);
 }
 
 PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
@@ -161,18 +163,114 @@ PoseEstimate EstimatePose(const std::vector<Eigen::Vector3d>& points_in_world,
   return RefinePose(points_in_world, pixels, camera, found.model, options, &found.inliers);
 }
 
+namespace {
+
+// The start sets and the active sets of a refinement: which point and line matches it may use,
+// and which it uses in the current round.
+struct MatchSets {
+  std::vector<uint8_t> points;
+  std::vector<uint8_t> lines;
+  bool operator==(const MatchSets& other) const { return points == other.points && lines == other.lines; }
+};
+
+int CountSet(const std::vector<uint8_t>& set) { return static_cast<int>(std::count(set.begin(), set.end(), 1)); }
+
+std::vector<int> Indices(const std::vector<uint8_t>& set) {
+  std::vector<int> indices;
+  for (size_t i = 0; i < set.size(); ++i)
+    if (set[i]) indices.push_back(static_cast<int>(i));
+  return indices;
+}
+
+// Marks the line matches in `candidates` whose ends lie within `threshold` of their image line
+// (the norm of the two distances); returns the count.
+int ClassifyLines(const LineMatches& lines, const Camera& camera, const Pose& camera_from_world, double threshold,
+                  const std::vector<uint8_t>& candidates, std::vector<uint8_t>* inliers) {
+  inliers->assign(lines.observed.size(), 0);
+  int count = 0;
+  for (size_t i = 0; i < lines.observed.size(); ++i) {
+    if (!candidates[i]) continue;
+    const Line3d in_camera{camera_from_world * lines.lines_in_world[i].start,
+                           camera_from_world * lines.lines_in_world[i].end};
+    const Eigen::Vector2d e =
+        LineEndDistances(lines.observed[i], in_camera, camera.fx, camera.fy, camera.cx, camera.cy);
+    if (e.norm() < threshold) {
+      (*inliers)[i] = 1;
+      ++count;
+    }
+  }
+  return count;
+}
+
+// One round: the active matches' Huber costs minimised from the pose (q, t), which it updates.
+// False with `failure` when Ceres fails.
+bool SolveRound(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
+                const LineMatches& lines, const Camera& camera, const MatchSets& active,
+                const PoseSolverOptions& options, double* q_xyzw, double* t, std::string* failure) {
+  ceres::Problem problem;
+  // All active correspondences in one block each for points and lines, Huber inside.
+  if (CountSet(active.points) > 0)
+    problem.AddResidualBlock(new PoseReprojectionCost(pixels, points_in_world, Indices(active.points), camera.fx,
+                                                      camera.fy, camera.cx, camera.cy, options.huber_delta_px),
+                             nullptr, q_xyzw, t);
+  if (CountSet(active.lines) > 0)
+    problem.AddResidualBlock(
+        new PoseLineCost(lines.observed, lines.lines_in_world, Indices(active.lines), camera.fx, camera.fy, camera.cx,
+                         camera.cy, options.huber_delta_px, options.line_weight),
+        nullptr, q_xyzw, t);
+  problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 6 unknowns
+  solver_options.max_num_iterations = options.refine_iterations;
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+  if (!summary.IsSolutionUsable()) *failure = "Ceres refinement failed: " + summary.message;
+  return summary.IsSolutionUsable();
+}
+
+Pose PoseFromParameters(const double* q_xyzw, const double* t) {
+  const Eigen::Quaterniond refined(q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]);
+  Pose pose = Pose::Identity();
+  pose.linear() = refined.normalized().toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  return pose;
+}
+
+// The matches of `start` within the outlier threshold at `pose`; `sum_squared` (optional): the
+// points' squared errors summed.
+MatchSets Inliers(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
+                  const LineMatches& lines, const Camera& camera, const Pose& pose, const MatchSets& start,
+                  const PoseSolverOptions& options, double* sum_squared) {
+  MatchSets inliers;
+  Classify(points_in_world, pixels, camera, pose, options.outlier_threshold_px, &start.points, &inliers.points,
+           sum_squared);
+  ClassifyLines(lines, camera, pose, options.outlier_threshold_px, start.lines, &inliers.lines);
+  return inliers;
+}
+
+}  // namespace
+
 PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,
                         const Camera& camera, const Pose& initial_camera_from_world, const PoseSolverOptions& options,
-                        const std::vector<uint8_t>* use) {
+                        const std::vector<uint8_t>* use, const LineMatches* line_matches) {
   options.Check();
   CheckSizes(points_in_world, pixels, "RefinePose");
   const size_t n = points_in_world.size();
   if (use != nullptr && use->size() != n)
     throw InputError("RefinePose: `use` has " + std::to_string(use->size()) + " entries for " + std::to_string(n) +
                      " correspondences");
+  const LineMatches no_lines;
+  const LineMatches& lines = line_matches != nullptr ? *line_matches : no_lines;
+  if (lines.observed.size() != lines.lines_in_world.size())
+    throw InputError("RefinePose: " + std::to_string(lines.observed.size()) + " image lines but " +
+                     std::to_string(lines.lines_in_world.size()) + " map lines");
   PoseEstimate result;
   result.camera_from_world = initial_camera_from_world;
   result.inliers.assign(n, 0);
+  result.line_inliers.assign(lines.observed.size(), 0);
 
   Eigen::Quaterniond q(initial_camera_from_world.linear());
   q.normalize();
@@ -180,57 +278,31 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, con
   double t[3] = {initial_camera_from_world.translation().x(), initial_camera_from_world.translation().y(),
                  initial_camera_from_world.translation().z()};
 
-  std::vector<uint8_t> active(n, 0);
-  for (size_t i = 0; i < n; ++i) active[i] = use == nullptr ? 1 : (*use)[i];
-
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 6 unknowns
-  solver_options.max_num_iterations = options.refine_iterations;
-  solver_options.num_threads = 1;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.minimizer_progress_to_stdout = false;
-
+  // A match dropped in one round may come back in the next: each round re-classifies the start set.
+  const MatchSets start{use != nullptr ? *use : std::vector<uint8_t>(n, 1),
+                        std::vector<uint8_t>(lines.observed.size(), 1)};
+  MatchSets active = start;
   for (int round = 0; round < options.refine_rounds; ++round) {
-    std::vector<int> active_indices;
-    for (size_t i = 0; i < n; ++i)
-      if (active[i]) active_indices.push_back(static_cast<int>(i));
-    if (static_cast<int>(active_indices.size()) < options.min_inliers) break;
-    // All active correspondences in one block, Huber inside (see PoseReprojectionCost).
-    ceres::Problem problem;
-    problem.AddResidualBlock(new PoseReprojectionCost(pixels, points_in_world, std::move(active_indices), camera.fx,
-                                                      camera.fy, camera.cx, camera.cy, options.huber_delta_px),
-                             nullptr, q_xyzw, t);
-    problem.SetManifold(q_xyzw, new ceres::EigenQuaternionManifold);
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options, &problem, &summary);
-    if (!summary.IsSolutionUsable()) {
-      result.failure = "Ceres refinement failed: " + summary.message;
-      return result;
-    }
-    const Eigen::Quaterniond refined(q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]);
-    Pose pose = Pose::Identity();
-    pose.linear() = refined.normalized().toRotationMatrix();
-    pose.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-    result.camera_from_world = pose;
-    // Re-classify the whole start set: a correspondence dropped earlier may come back.
-    std::vector<uint8_t> start(n);
-    for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
-    std::vector<uint8_t> next_active;
-    Classify(points_in_world, pixels, camera, pose, options.outlier_threshold_px, &start, &next_active, nullptr);
+    if (CountSet(active.points) + CountSet(active.lines) < options.min_inliers) break;
+    if (!SolveRound(points_in_world, pixels, lines, camera, active, options, q_xyzw, t, &result.failure)) return result;
+    result.camera_from_world = PoseFromParameters(q_xyzw, t);
+    MatchSets next = Inliers(points_in_world, pixels, lines, camera, result.camera_from_world, start, options, nullptr);
     // Same set as this round's: another round would solve the same problem again.
-    if (next_active == active) break;
-    active.swap(next_active);
+    if (next == active) break;
+    active = std::move(next);
   }
 
   double sum_squared = 0.0;
-  std::vector<uint8_t> start(n);
-  for (size_t i = 0; i < n; ++i) start[i] = use == nullptr ? 1 : (*use)[i];
-  result.num_inliers = Classify(points_in_world, pixels, camera, result.camera_from_world, options.outlier_threshold_px,
-                                &start, &result.inliers, &sum_squared);
+  MatchSets inliers =
+      Inliers(points_in_world, pixels, lines, camera, result.camera_from_world, start, options, &sum_squared);
+  result.num_inliers = CountSet(inliers.points);
+  result.num_line_inliers = CountSet(inliers.lines);
+  result.inliers = std::move(inliers.points);
+  result.line_inliers = std::move(inliers.lines);
   result.rms_error_px = result.num_inliers > 0 ? std::sqrt(sum_squared / result.num_inliers) : 0.0;
-  if (result.num_inliers < options.min_inliers) {
-    result.failure = "refinement kept " + std::to_string(result.num_inliers) + " inliers, fewer than " +
-                     std::to_string(options.min_inliers);
+  if (result.num_inliers + result.num_line_inliers < options.min_inliers) {
+    result.failure = "refinement kept " + std::to_string(result.num_inliers + result.num_line_inliers) +
+                     " inliers, fewer than " + std::to_string(options.min_inliers);
     return result;
   }
   result.ok = true;
