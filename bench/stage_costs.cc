@@ -134,14 +134,16 @@ void TimeDepthChange(const std::vector<dynvo::RgbdFrame>& frames, size_t i, cons
   });
 }
 
-// Times line segments on frame i: detection with LBD description at the default half
-// resolution and at full resolution, then 3D lines from depth of the default's lines.
+// Times line segments on frame i: detection at full and at the default half resolution, LBD
+// descriptors of the default's lines, and their 3D lines from depth.
 void TimeLines(const dynvo::RgbdFrame& frame, const dynvo::Camera& camera, StepTimes& steps) {
   dynvo::LineExtractorOptions full;
   full.detect_level = 0;
-  steps.Time("lines: FLD full + LBD", [&] { return dynvo::ExtractLines(frame.gray, cv::Mat(), camera, full); });
-  const dynvo::FrameLines lines =
-      steps.Time("lines: FLD half + LBD", [&] { return dynvo::ExtractLines(frame.gray, cv::Mat(), camera, {}); });
+  steps.Time("lines: FLD full", [&] { return dynvo::DetectLines(frame.gray, frame.depth, camera, full); });
+  dynvo::FrameLines lines = steps.Time("lines: FLD half, the longest kept", [&] {
+    return dynvo::KeepLines(dynvo::DetectLines(frame.gray, frame.depth, camera, {}), cv::Mat(), {});
+  });
+  steps.Time("lines: LBD of the kept", [&] { dynvo::DescribeLines(frame.gray, &lines); });
   if (frame.depth.empty()) return;
   steps.Time("lines: 3D from depth", [&] {
     int found = 0;

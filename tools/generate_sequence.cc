@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   double fps = 30;
   std::optional<double> fx, fy, cx, cy;
   unsigned seed = 1;
-  bool motion_blur = false, kinect_sensor = false, force = false;
+  bool motion_blur = false, kinect_sensor = false, plain_room = false, force = false;
   app.add_option("--scenario", scenario,
                  "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
                  "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   app.add_flag("--kinect-sensor", kinect_sensor,
                "Kinect v1 sensor timing for any scenario (always on for tum_*): motion blur, depth seen a few ms "
                "before colour, exposure drift, 28 ms rolling shutter; the static twin of a tum_* sequence");
+  app.add_flag("--plain-room", plain_room,
+               "walls, floor and furniture in plain paint: low texture, the edges of the room and its furniture");
   app.add_option("--out", out, "output folder (TUM layout)")->required();
   app.add_flag("--force", force, "replace the generated files of an existing non-empty --out");
   return dynvo::RunToolMain(prog, app, argc, argv, [&] {
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
     options.frames = frames;
     options.fps = fps;
     options.seed = seed;
+    options.room.plain = plain_room;
     const bool kinect = kinect_sensor || dynvo::IsTumScenario(options.scenario);
     options.motion_blur = motion_blur || kinect;
     options.kinect_timing = kinect;

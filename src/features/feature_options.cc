@@ -31,6 +31,7 @@ void FeatureOptions::Check() const {
     throw InputError("features.refill_from_background needs features.refill_outside_mask=true");
   if (refill_reuse_corners && !refill_outside_mask)
     throw InputError("features.refill_reuse_corners needs features.refill_outside_mask=true");
+  lines.Check();
 }
 
 FeatureDistribution ParseFeatureDistribution(const std::string& text, const std::string& key) {
@@ -74,6 +75,7 @@ void BindConfigKeys(const std::string& prefix, FeatureOptions* o, ConfigRegistry
   r->Bind(prefix + ".refill_reuse_corners", &o->refill_reuse_corners,
           "with refill_outside_mask: the refill chooses again among the corners the first extraction detected "
           "off the grown mask instead of detecting them again (no second detection pass)");
+  BindConfigKeys(prefix + ".lines", &o->lines, r);
 }
 
 }  // namespace dynvo

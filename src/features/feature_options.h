@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "lines/line_extractor.h"
+
 namespace dynvo {
 
 class ConfigRegistry;
@@ -32,12 +34,14 @@ struct FeatureOptions {
   // extraction detected (those off the grown mask) instead of detecting them again: no second
   // detection pass; cells whose corners all lie on the mask are not retried at the low threshold.
   bool refill_reuse_corners = false;
+  LineExtractorOptions lines;  // "features.lines.*": line segments beside the points
 
   // Throws InputError naming the key "features.<field>" when a field is out of range.
   void Check() const;
 };
 
-// The config keys of the features (section "features"): ORB budget and pyramid, spreading, depth range, refill.
+// The config keys of the features (section "features"): ORB budget and pyramid, spreading, depth range, refill,
+// lines.
 void BindConfigKeys(const std::string& prefix, FeatureOptions* options, ConfigRegistry* registry);
 
 // "quadtree" / "grid" / "none"; throws InputError naming `key` otherwise.

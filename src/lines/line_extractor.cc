@@ -10,6 +10,7 @@
 #include <opencv2/line_descriptor.hpp>
 #include <opencv2/ximgproc/fast_line_detector.hpp>
 
+#include "core/config_registry.h"
 #include "core/error.h"
 
 namespace dynvo {
@@ -111,27 +112,47 @@ void LineExtractorOptions::Check() const {
                 max_masked_share);
 }
 
-FrameLines ExtractLines(const cv::Mat& gray, const cv::Mat& exclude, const Camera& camera,
-                        const LineExtractorOptions& options) {
+void BindConfigKeys(const std::string& prefix, LineExtractorOptions* o, ConfigRegistry* r) {
+  r->Bind(prefix + ".enabled", &o->enabled,
+          "line segments (FLD) join the points in the pose, as in the second paper (IPL-SLAM)");
+  r->Bind(prefix + ".max_lines", &o->max_lines, "the longest line segments kept per frame");
+}
+
+FrameLines DetectLines(const cv::Mat& gray, const cv::Mat& depth, const Camera& camera,
+                       const LineExtractorOptions& options) {
   options.Check();
-  if (gray.empty() || gray.type() != CV_8UC1) throw InputError("ExtractLines: the image must be 8-bit grey (CV_8UC1)");
-  if (!exclude.empty() && (exclude.size() != gray.size() || exclude.type() != CV_8UC1))
-    throw InputError("ExtractLines: the exclusion mask must be CV_8UC1 of the image's size");
-  std::vector<LineSegment> found = DetectSegments(gray, options.detect_level, options.min_length_px);
+  if (gray.empty() || gray.type() != CV_8UC1) throw InputError("DetectLines: the image must be 8-bit grey (CV_8UC1)");
+  FrameLines lines;
+  lines.detected = DetectSegments(gray, options.detect_level, options.min_length_px);
   // Longest first; ties by position, so that the order never depends on FLD's.
-  std::sort(found.begin(), found.end(), [](const LineSegment& a, const LineSegment& b) {
+  std::sort(lines.detected.begin(), lines.detected.end(), [](const LineSegment& a, const LineSegment& b) {
     if (a.Length() != b.Length()) return a.Length() > b.Length();
     return std::lexicographical_compare(a.start.data(), a.start.data() + 2, b.start.data(), b.start.data() + 2);
   });
-  FrameLines lines;
-  for (const LineSegment& s : found) {
-    if (static_cast<int>(lines.detected.size()) >= options.max_lines) break;
-    if (!exclude.empty() && MaskedShare(s, exclude) > options.max_masked_share) continue;
-    lines.detected.push_back(s);
-  }
-  lines.descriptors = DescribeSegments(gray, lines.detected);
   lines.segments = Undistorted(lines.detected, camera);
+  lines.depth = depth;
+  lines.image_size = gray.size();
   return lines;
+}
+
+FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const LineExtractorOptions& options) {
+  options.Check();
+  if (!exclude.empty() && (exclude.type() != CV_8UC1 || exclude.size() != lines.image_size))
+    throw InputError("KeepLines: the exclusion mask must be CV_8UC1 of the image's size");
+  FrameLines kept;
+  kept.depth = lines.depth;
+  kept.image_size = lines.image_size;
+  for (size_t i = 0; i < lines.size() && static_cast<int>(kept.size()) < options.max_lines; ++i) {
+    if (!exclude.empty() && MaskedShare(lines.detected[i], exclude) > options.max_masked_share) continue;
+    kept.detected.push_back(lines.detected[i]);
+    kept.segments.push_back(lines.segments[i]);
+    if (!lines.descriptors.empty()) kept.descriptors.push_back(lines.descriptors.row(static_cast<int>(i)));
+  }
+  return kept;
+}
+
+void DescribeLines(const cv::Mat& gray, FrameLines* lines) {
+  lines->descriptors = DescribeSegments(gray, lines->detected);
 }
 
 }  // namespace dynvo

@@ -1,5 +1,6 @@
 #include "lines/line_from_depth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,27 +25,44 @@ bool OnLine(const Sample& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   return DistanceToLine(s.point, origin, direction) <= tolerance_at_1m * s.point.z() * s.point.z();
 }
 
-std::vector<Sample> SampleDepth(const LineSegment& detected, const LineSegment& undistorted, const cv::Mat& depth_m,
-                                const Camera& camera, int count) {
-  std::vector<Sample> samples;
-  for (int i = 0; i < count; ++i) {
-    const double along = static_cast<double>(i) / (count - 1);
-    const Eigen::Vector2d at = detected.start + along * (detected.end - detected.start);
-    const int u = static_cast<int>(std::lround(at.x())), v = static_cast<int>(std::lround(at.y()));
+// The nearest valid depth within `reach` pixels across the segment at `at` (0 when none): a
+// segment on an occluding edge is the nearer surface's, whose depth the pixels right on the
+// edge share with the background behind it.
+float NearestDepthAcross(const cv::Mat& depth_m, const Eigen::Vector2d& at, const Eigen::Vector2d& across, int reach) {
+  float nearest = 0.0f;
+  for (int k = -reach; k <= reach; ++k) {
+    const Eigen::Vector2d p = at + static_cast<double>(k) * across;
+    const int u = static_cast<int>(std::lround(p.x())), v = static_cast<int>(std::lround(p.y()));
     if (u < 0 || v < 0 || u >= depth_m.cols || v >= depth_m.rows) continue;
     const float z = depth_m.at<float>(v, u);
-    if (!(z > 0.0f) || !std::isfinite(z)) continue;
+    if (z > 0.0f && std::isfinite(z) && (nearest == 0.0f || z < nearest)) nearest = z;
+  }
+  return nearest;
+}
+
+std::vector<Sample> SampleDepth(const LineSegment& detected, const LineSegment& undistorted, const cv::Mat& depth_m,
+                                const Camera& camera, const LineDepthOptions& options) {
+  std::vector<Sample> samples;
+  const Eigen::Vector2d direction = (detected.end - detected.start).normalized();
+  const Eigen::Vector2d across(-direction.y(), direction.x());
+  for (int i = 0; i < options.samples; ++i) {
+    const double along = static_cast<double>(i) / (options.samples - 1);
+    const float z =
+        NearestDepthAcross(depth_m, detected.start + along * (detected.end - detected.start), across, options.reach_px);
+    if (z == 0.0f) continue;
     const Eigen::Vector2d pixel = undistorted.start + along * (undistorted.end - undistorted.start);
     samples.push_back({along, camera.Backproject(pixel, z)});
   }
   return samples;
 }
 
-// The samples on the best line through two of them (most on it; ties: the first pair found).
+// The samples on the best line through two of them at least a third of the samples apart
+// (most on it; ties: the first pair found): a line through near neighbours is poorly placed.
 std::vector<Sample> BestInliers(const std::vector<Sample>& samples, double tolerance_at_1m) {
   std::vector<Sample> best;
+  const size_t gap = std::max<size_t>(1, samples.size() / 3);
   for (size_t i = 0; i < samples.size(); ++i) {
-    for (size_t j = i + 1; j < samples.size(); ++j) {
+    for (size_t j = i + gap; j < samples.size(); ++j) {
       const Eigen::Vector3d span = samples[j].point - samples[i].point;
       if (span.norm() < 1e-6) continue;
       const Eigen::Vector3d direction = span.normalized();
@@ -66,6 +84,7 @@ void LineDepthOptions::Check() const {
   RequireOption(min_inlier_share > 0.0 && min_inlier_share <= 1.0, "features.lines.depth", "min_inlier_share",
                 "in (0, 1]", min_inlier_share);
   RequireOption(tolerance_m_at_1m > 0.0, "features.lines.depth", "tolerance_m_at_1m", "> 0", tolerance_m_at_1m);
+  RequireOption(reach_px >= 0, "features.lines.depth", "reach_px", ">= 0", reach_px);
 }
 
 std::optional<Line3d> LineFromDepth(const LineSegment& detected, const LineSegment& undistorted, const cv::Mat& depth_m,
@@ -73,7 +92,7 @@ std::optional<Line3d> LineFromDepth(const LineSegment& detected, const LineSegme
   options.Check();
   if (depth_m.empty() || depth_m.type() != CV_32FC1)
     throw InputError("LineFromDepth: the depth must be CV_32FC1 metres");
-  const std::vector<Sample> samples = SampleDepth(detected, undistorted, depth_m, camera, options.samples);
+  const std::vector<Sample> samples = SampleDepth(detected, undistorted, depth_m, camera, options);
   if (samples.size() < 2 || samples.size() < options.min_valid_share * options.samples) return std::nullopt;
   const std::vector<Sample> inliers = BestInliers(samples, options.tolerance_m_at_1m);
   if (inliers.size() < 2 || inliers.size() < options.min_inlier_share * samples.size()) return std::nullopt;

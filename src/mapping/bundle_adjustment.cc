@@ -13,6 +13,7 @@
 
 #include "core/config_registry.h"
 #include "core/error.h"
+#include "mapping/anchored_line_error.h"
 #include "mapping/rgbd_reprojection_error.h"
 #include "pose/reprojection_error.h"
 
@@ -145,6 +146,23 @@ void CollectObservations(const LocalMap& map, const BaWindow& w, LocalBaProblem*
   }
 }
 
+// The observations of lines anchored in another keyframe of the problem, unless both poses are fixed.
+void CollectLineObservations(const LocalMap& map, LocalBaProblem* problem) {
+  std::unordered_map<int64_t, size_t> index;  // keyframe id -> index into problem->keyframes
+  for (size_t k = 0; k < problem->keyframes.size(); ++k) index[problem->keyframes[k].id] = k;
+  std::unordered_map<int64_t, const Keyframe*> by_id;
+  for (const Keyframe& keyframe : map.keyframes()) by_id[keyframe.id] = &keyframe;
+  for (size_t k = 0; k < problem->keyframes.size(); ++k) {
+    for (const KeyframeLineObservation& o : by_id.at(problem->keyframes[k].id)->line_observations) {
+      auto anchor = index.find(o.anchor_keyframe_id);
+      if (anchor == index.end() || (problem->keyframes[k].fixed && problem->keyframes[anchor->second].fixed)) continue;
+      const std::vector<Line3d>& lines = by_id.at(o.anchor_keyframe_id)->lines_in_camera;
+      if (o.line >= lines.size()) continue;
+      problem->line_observations.push_back({k, anchor->second, lines[o.line], o.observed});
+    }
+  }
+}
+
 // The variables of the problem: the keyframes' poses and the points.
 struct BaState {
   std::vector<PoseBlock> poses;
@@ -171,6 +189,10 @@ bool SolveRound(const LocalBaProblem& problem, const Camera& camera, double bf, 
     ceres_problem.AddResidualBlock(cost, loss, state->poses[o.keyframe].q, state->poses[o.keyframe].t,
                                    state->points[o.point].data());
   }
+  for (const LocalBaProblem::LineObservation& o : problem.line_observations)
+    ceres_problem.AddResidualBlock(
+        AnchoredLineError::Create(o.in_anchor, o.observed, camera.fx, camera.fy, camera.cx, camera.cy), loss,
+        state->poses[o.anchor].q, state->poses[o.anchor].t, state->poses[o.keyframe].q, state->poses[o.keyframe].t);
   *solved = ceres_problem.NumResidualBlocks() > 0;
   if (!*solved) {
     delete loss;
@@ -261,6 +283,7 @@ LocalBaProblem PrepareLocalBundleAdjustment(const LocalMap& map, const BundleAdj
     return problem;
   }
   CollectObservations(map, SelectWindow(map.keyframes(), options.window_keyframes), &problem);
+  CollectLineObservations(map, &problem);
   if (problem.observations.empty()) problem.failure = "no point is observed by two keyframes";
   return problem;
 }
@@ -285,6 +308,7 @@ LocalBaSolution SolveLocalBundleAdjustment(const LocalBaProblem& problem, const 
         Errors(camera, bf, problem.keyframes[o.keyframe].camera_from_world, problem.points[o.point], o.measured).pixel;
   report.num_points = static_cast<int>(problem.points.size());
   report.num_observations = static_cast<int>(problem.observations.size());
+  report.num_line_observations = static_cast<int>(problem.line_observations.size());
   report.initial_rms_px = std::sqrt(initial_sq / static_cast<double>(problem.observations.size()));
   if (!SolveInRounds(problem, camera, bf, options, &state, &report)) return solution;
 

@@ -45,8 +45,9 @@ struct BundleAdjustmentReport {
   std::string failure;  // why ok is false, "" otherwise
   int num_keyframes_optimised = 0;
   int num_keyframes_fixed = 0;
-  int num_points = 0;        // points optimised
-  int num_observations = 0;  // residual blocks
+  int num_points = 0;             // points optimised
+  int num_observations = 0;       // residual blocks of points
+  int num_line_observations = 0;  // residual blocks of lines (AnchoredLineError)
   int num_outliers_removed = 0;
   int iterations = 0;                // Ceres iterations, all rounds
   bool converged = false;            // every round met Ceres' tolerances (none stopped at max_iterations)
@@ -73,6 +74,14 @@ struct LocalBaProblem {
   std::vector<int64_t> point_ids;
   std::vector<Eigen::Vector3d> points;  // positions in the world, metres
   std::vector<Observation> observations;
+  // A keyframe's observation of a line anchored in another keyframe of the problem (not both fixed).
+  struct LineObservation {
+    size_t keyframe = 0;                                 // index into keyframes: the observer
+    size_t anchor = 0;                                   // index into keyframes: where the line was measured
+    Line3d in_anchor;                                    // the segment in the anchor's camera coordinates
+    Eigen::Vector3d observed = Eigen::Vector3d::Zero();  // the observer's image line
+  };
+  std::vector<LineObservation> line_observations;
 };
 
 // What a solved local BA changes in the map (ApplyLocalBundleAdjustment).
@@ -89,14 +98,15 @@ struct LocalBaSolution {
 // those points enter as fixed constraints; at least two keyframes are always fixed (the oldest
 // ones involved). That fixes the gauge: the errors are invariant to a rigid motion of the whole
 // scene (and, without depth, to its scaling), so without fixed poses the solution would drift
-// along those directions. `failure` says why there is nothing to solve.
+// along those directions. `failure` says why there is nothing to solve. The keyframes'
+// observations of lines anchored in another keyframe involved join as AnchoredLineError.
 LocalBaProblem PrepareLocalBundleAdjustment(const LocalMap& map, const BundleAdjustmentOptions& options);
 
 // Minimises the Huber-robustified reprojection error (with the depth term for observations that
-// have a depth). Observations whose error (pixel and disparity components) exceeds
-// `outlier_threshold_px` after a round are left out of the next round (up to `rounds`), and those
-// above it at the end are outliers to remove. Pure and deterministic (single-threaded): safe
-// to run on another thread while the map changes.
+// have a depth) and the line errors (AnchoredLineError, the same Huber loss, kept in every round). Observations whose
+// error (pixel and disparity components) exceeds `outlier_threshold_px` after a round are left out of the next round
+// (up to `rounds`), and those above it at the end are outliers to remove. Pure and deterministic (single-threaded):
+// safe to run on another thread while the map changes.
 LocalBaSolution SolveLocalBundleAdjustment(const LocalBaProblem& problem, const Camera& camera,
                                            const BundleAdjustmentOptions& options);
 

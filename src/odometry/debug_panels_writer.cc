@@ -79,9 +79,9 @@ cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
   for (size_t i = 0; i < mask.people.size(); ++i) {
     const Detection& person = mask.people[i];
     const char* state = !judged ? "" : (*mask.people_moving)[i] ? " moving" : " still";
-    const cv::Scalar color = !judged                 ? cv::Scalar(0, 255, 255)
+    const cv::Scalar color = !judged                    ? cv::Scalar(0, 255, 255)
                              : (*mask.people_moving)[i] ? cv::Scalar(0, 0, 255)
-                                                     : cv::Scalar(0, 200, 0);
+                                                        : cv::Scalar(0, 200, 0);
     cv::rectangle(canvas, person.box, color, 2);
     const std::string label = FixedText(person.score, 2) + state;
     cv::putText(canvas, label, cv::Point(person.box.tl()) + cv::Point(2, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5, color, 1);
@@ -147,8 +147,8 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
       {"depth_change", mask.change_seeds},
       {"map_occlusion", mask.map_occlusion},
       {"map_occlusion_candidates", mask.map_occlusion_candidates},
-      {"detections", !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask)
-                                                                            : cv::Mat()}};
+      {"detections",
+       !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask) : cv::Mat()}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

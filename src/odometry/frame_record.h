@@ -23,6 +23,8 @@ struct StageTimes {
   double map_ms = 0;           // keyframe insertion and map upkeep
   double local_ba_ms = 0;      // local bundle adjustment in this frame: its solve, or the wait for one beside tracking
   double detector_ms = 0;      // the person detector on this frame, on its own thread (beside tracking)
+  double lines_ms = 0;         // line segments: detection (on the executor, beside the mask), keeping those
+                               // off the mask, matching, refinement and a keyframe's new map lines
   double processing_ms = 0;    // everything after loading, wall time
 };
 
@@ -54,6 +56,10 @@ struct FrameRecord {
   int people_moving = -1;                  // of them, judged moving (people refinement; -1: not judged)
   int detection_age = -1;                  // frames since they were detected (0: this frame; -1: none yet)
   std::string detection;                   // detected, carried, failed, timed_out ("" : no detector)
+  int lines = -1;                          // line segments kept off the mask (-1: lines off)
+  int lines_matched = 0;                   // of them, matched to map lines
+  int line_inliers = 0;                    // of those, inliers of the final pose
+  int lines_added = 0;                     // map lines this frame's keyframe added
 };
 
 }  // namespace dynvo

@@ -83,7 +83,8 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
     for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->LookAhead(*next);
   }
   // 3. The pose from the static features against the local map; keyframes.
-  out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed);
+  out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed,
+                                out.features.lines ? &*out.features.lines : nullptr);
   // 4. Local BA after a keyframe from a tracked pose (at once, or beside tracking and merged
   // some frames later); the tracker goes on from the refined pose.
   const bool tracked_keyframe = out.tracking.keyframe_inserted && out.tracking.state == TrackingState::kTracking;
@@ -150,6 +151,13 @@ FrameRecord MakeFrameRecord(const RgbdFrame& frame, const FrameOutput& stages) {
   record.times.map_ms = tracking.map_ms;
   record.times.local_ba_ms = stages.mapping.ms;
   if (stages.mapping.status == MappingStatus::kAdjusted) record.local_ba_converged = stages.mapping.converged ? 1 : 0;
+  if (stages.features.lines) {
+    record.lines = static_cast<int>(stages.features.lines->size());
+    record.lines_matched = tracking.lines_matched;
+    record.line_inliers = tracking.line_inliers;
+    record.lines_added = tracking.lines_added;
+    record.times.lines_ms = stages.features.lines_ms + tracking.line_ms;
+  }
   record.times.processing_ms = stages.processing_ms;
   return record;
 }

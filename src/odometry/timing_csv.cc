@@ -30,7 +30,7 @@ const char* TimingCsvWriter::Header() {
          "dynamic_ratio,mask_threshold,mask_ok,mask_note,tracking_state,tracking_note,matches,inliers,"
          "new_points_rejected,coherent_motion_rejected,keyframe,"
          "mask_precision,mask_recall,mask_iou,people,detection_age,people_moving,people_still,detector_ms,"
-         "detector_status,local_ba_converged";
+         "detector_status,local_ba_converged,lines,lines_matched,line_inliers,lines_added,lines_ms";
 }
 
 TimingCsvWriter::TimingCsvWriter(const std::string& path) : file_(path) { file_.Append(std::string(Header()) + "\n"); }
@@ -59,7 +59,13 @@ void TimingCsvWriter::Write(const FrameRecord& r) {
       << (judged ? std::to_string(r.people_moving) : std::string()) << ','
       << (judged ? std::to_string(r.people - r.people_moving) : std::string()) << ','
       << (r.people >= 0 ? Fixed(t.detector_ms, 3) : std::string()) << ',' << r.detection << ','
-      << (r.local_ba_converged >= 0 ? std::to_string(r.local_ba_converged) : std::string()) << '\n';
+      << (r.local_ba_converged >= 0 ? std::to_string(r.local_ba_converged) : std::string());
+  if (r.lines >= 0) {
+    row << ',' << r.lines << ',' << r.lines_matched << ',' << r.line_inliers << ',' << r.lines_added << ','
+        << Fixed(t.lines_ms, 3) << '\n';
+  } else {
+    row << ",,,,,\n";
+  }
   file_.Append(row.str());
 }
 

@@ -21,7 +21,15 @@ FeatureStage::FeatureStage(const Camera& camera, const FeatureOptions& options, 
 
 void FeatureStage::Start(const RgbdFrame& frame) {
   pending_.Reset();  // one for another frame is dropped, with its error
+  pending_lines_.Reset();
   pending_gray_ = frame.gray;
+  if (options_.lines.enabled)
+    pending_lines_ = executor_.Submit([this, frame] {
+      const auto start = SteadyClock::now();
+      LineDetection detection{DetectLines(frame.gray, frame.depth, camera_, options_.lines), 0.0};
+      detection.ms = MillisecondsSince(start);
+      return detection;
+    });
   pending_ = executor_.Submit([this, frame] {
     Extraction extraction;
     const auto start = SteadyClock::now();
@@ -61,6 +69,12 @@ FeaturePacket FeatureStage::Finish(const RgbdFrame& frame, const MaskPacket& mas
   else
     packet.split.kept = std::move(extraction.features);
   packet.filter_ms = MillisecondsSince(start);
+  if (pending_lines_.valid()) {
+    start = SteadyClock::now();
+    const LineDetection detection = pending_lines_.Get();
+    packet.lines = KeepLines(detection.lines, mask.mask, options_.lines);
+    packet.lines_ms = detection.ms + MillisecondsSince(start);
+  }
   // The frame as the refill describes it: with refill_from_background, the mask's pixels are the
   // static background of earlier frames, kept for the next frame (also when nothing is refilled,
   // so that what moves stays out of it).

@@ -1,6 +1,7 @@
 #pragma once
 // The third stage of the pipeline: frame t's ORB features (extracted on the executor beside the
-// mask, or ahead while frame t-1 was finished), split by the mask; with refill_outside_mask the
+// mask, or ahead while frame t-1 was finished), split by the mask, and its line segments off the
+// mask when lines are on; with refill_outside_mask the
 // budget the mask took is spent again off the mask and its margin, optionally chosen among the
 // frame's own corners and described on the static background seen there before.
 
@@ -33,6 +34,10 @@ class FeatureStage {
     DetectedCorners corners;  // with refill_reuse_corners: what the extraction detected
     double ms = 0.0;
   };
+  struct LineDetection {
+    FrameLines lines;
+    double ms = 0.0;
+  };
   void Start(const RgbdFrame& frame);
   // Spends the budget the mask took off the mask grown by the margin, on `described`.
   FrameFeatures Refill(const RgbdFrame& frame, const cv::Mat& mask, const cv::Mat& described,
@@ -47,6 +52,7 @@ class FeatureStage {
   // The extraction under way, of the frame whose grey image is pending_gray_ (declared last).
   cv::Mat pending_gray_;
   Task<Extraction> pending_;
+  Task<LineDetection> pending_lines_;  // features.lines.enabled: its own task, beside the ORB one
 };
 
 }  // namespace dynvo

@@ -15,6 +15,7 @@
 #include "detection/detection_runner.h"
 #include "detection/person_detector.h"
 #include "features/feature_filter.h"
+#include "lines/line_extractor.h"
 #include "mapping/local_mapper.h"
 #include "tracking/frame_tracker.h"
 
@@ -37,15 +38,15 @@ std::string ToString(MaskStatus status);
 struct MaskPacket {
   size_t frame = 0;
   MaskStatus status = MaskStatus::kOff;
-  std::string failure;              // kFailed: why; with a detector: its failure or time-out
-  cv::Mat mask;                     // CV_8UC1, 255 = dynamic; empty = no mask
-  double dynamic_ratio = 0.0;       // share of `mask`'s pixels
-  int threshold = -1;               // grey level the forward difference was binarised at (kComputed)
-  std::vector<Detection> people;    // kDetected: the detector's boxes, best first
+  std::string failure;                             // kFailed: why; with a detector: its failure or time-out
+  cv::Mat mask;                                    // CV_8UC1, 255 = dynamic; empty = no mask
+  double dynamic_ratio = 0.0;                      // share of `mask`'s pixels
+  int threshold = -1;                              // grey level the forward difference was binarised at (kComputed)
+  std::vector<Detection> people;                   // kDetected: the detector's boxes, best first
   std::optional<std::vector<bool>> people_moving;  // people refinement: each of `people` judged moving
-  int detection_age = -1;           // kDetected: frames since `people` were detected (0: this frame; -1: never)
+  int detection_age = -1;  // kDetected: frames since `people` were detected (0: this frame; -1: never)
   DetectionStatus detection = DetectionStatus::kNone;  // what became of this frame's detection
-  double detector_ms = 0.0;         // the detector's own wall time on this frame (on its thread)
+  double detector_ms = 0.0;                            // the detector's own wall time on this frame (on its thread)
   // The camera's motion as a homography, frame t-1 -> t, when the source estimated it: what
   // carries frame t-1's masks (refinements) and background (feature refill) into frame t.
   bool has_motion = false;
@@ -73,10 +74,12 @@ struct MaskPacket {
 // Frame t's features, split by its mask.
 struct FeaturePacket {
   size_t frame = 0;
-  FeatureSplit split;        // kept (for the pose) and removed (on the mask)
-  cv::Mat described;         // refill_from_background: frame t as the refill described it
-  double features_ms = 0.0;  // extraction, background fill and refill
-  double filter_ms = 0.0;    // splitting by the mask
+  FeatureSplit split;               // kept (for the pose) and removed (on the mask)
+  std::optional<FrameLines> lines;  // features.lines.enabled: the line segments off the mask
+  cv::Mat described;                // refill_from_background: frame t as the refill described it
+  double features_ms = 0.0;         // extraction, background fill and refill
+  double filter_ms = 0.0;           // splitting by the mask
+  double lines_ms = 0.0;            // line detection (on the executor, beside the rest) and keeping those off the mask
 };
 
 // Everything the pipeline produced for one frame.

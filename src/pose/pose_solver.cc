@@ -312,6 +312,9 @@ PoseEstimate RefinePose(const std::vector<Eigen::Vector3d>& points_in_world, con
 void BindConfigKeys(const std::string& prefix, PoseSolverOptions* o, ConfigRegistry* r) {
   r->Bind(prefix + ".seed", &o->seed, "EPnP RANSAC random seed");
   r->Bind(prefix + ".huber_delta_px", &o->huber_delta_px, "Huber loss scale (paper eq. 5)");
+  r->Bind(prefix + ".line_weight", &o->line_weight,
+          "a matched line's cost against a point's in the pose (features.lines): both ends' distances to the "
+          "image line count as one point's error, times this");
 }
 
 }  // namespace dynvo

@@ -114,6 +114,15 @@ cv::Mat Wall(int w, int h, Rng& rng) {
   return image;
 }
 
+// One colour with soft large-scale shading and faint grain: what a corner detector hardly
+// finds anything in, away from the surface's edges.
+cv::Mat Paint(int w, int h, Rng& rng) {
+  cv::Mat image(h, w, CV_8UC3, RandomColor(rng, 60, 225));
+  AddNoise(image, FractalNoise(w, h, 256, rng), 6);
+  AddNoise(image, FractalNoise(w, h, 4, rng), 1.5);
+  return image;
+}
+
 cv::Mat Floor(int w, int h, Rng& rng) {
   cv::Mat image(h, w, CV_8UC3);
   const bool tiles = UniformInt(rng, 0, 1) == 0;
@@ -285,6 +294,8 @@ cv::Mat MakeTextureImage(TextureKind kind, int width, int height, std::uint32_t 
       return Denim(width, height, rng);
     case TextureKind::kSkin:
       return Skin(width, height, rng);
+    case TextureKind::kPaint:
+      return Paint(width, height, rng);
   }
   return Wall(width, height, rng);
 }

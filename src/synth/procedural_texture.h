@@ -19,6 +19,7 @@ enum class TextureKind {
   kClothes,  // stripes, checks or prints on fabric
   kDenim,    // trousers
   kSkin,     // face and hands
+  kPaint,    // plain paint: one colour, soft shading and faint grain, no print (low texture)
 };
 
 // A texture and its mip pyramid (level 0 full size, each next level halved).

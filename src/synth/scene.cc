@@ -80,30 +80,41 @@ std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed
   std::vector<TexturedQuad> quads;
   const double x0 = -o.width_m / 2, x1 = o.width_m / 2, y0 = -1.5, y1 = y0 + o.depth_m, h = o.height_m;
   const double t = o.texel_size_m;
+  const auto kind = [&](TextureKind k) { return o.plain ? TextureKind::kPaint : k; };
   // Shell: walls seen from inside, texture rows downwards.
-  quads.push_back(Face({x0, y1, h}, {o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 11, 0));   // front
-  quads.push_back(Face({x1, y0, h}, {-o.width_m, 0, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 12, 0));  // back
-  quads.push_back(Face({x0, y0, h}, {0, o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 13, 0));   // left
-  quads.push_back(Face({x1, y1, h}, {0, -o.depth_m, 0}, {0, 0, -h}, TextureKind::kWall, t, seed + 14, 0));  // right
-  quads.push_back(Face({x0, y0, 0}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, TextureKind::kFloor, t, seed + 15, 0));
-  quads.push_back(Face({x0, y0, h}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, TextureKind::kWall, 2 * t, seed + 16, 0));
+  quads.push_back(
+      Face({x0, y1, h}, {o.width_m, 0, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 11, 0));  // front
+  quads.push_back(
+      Face({x1, y0, h}, {-o.width_m, 0, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 12, 0));             // back
+  quads.push_back(Face({x0, y0, h}, {0, o.depth_m, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 13, 0));  // left
+  quads.push_back(
+      Face({x1, y1, h}, {0, -o.depth_m, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 14, 0));  // right
+  quads.push_back(Face({x0, y0, 0}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, kind(TextureKind::kFloor), t, seed + 15, 0));
+  quads.push_back(
+      Face({x0, y0, h}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, kind(TextureKind::kWall), 2 * t, seed + 16, 0));
 
   const Pose identity = Pose::Identity();
   const double fine = std::min(t, 0.003);
   // Two desks (top slab + legs), a cabinet, a shelf with boxes along the front wall.
   auto desk = [&](double xa, double xb, double ya, double yb, std::uint32_t s) {
-    AddBox({xa, ya, 0.72}, {xb, yb, 0.76}, identity, TextureKind::kWood, fine, s, 0, &quads);
-    AddBox({xa + 0.03, ya + 0.03, 0}, {xa + 0.08, ya + 0.08, 0.72}, identity, TextureKind::kWood, t, s + 1, 0, &quads);
-    AddBox({xb - 0.08, ya + 0.03, 0}, {xb - 0.03, ya + 0.08, 0.72}, identity, TextureKind::kWood, t, s + 2, 0, &quads);
-    AddBox({xa + 0.03, yb - 0.08, 0}, {xa + 0.08, yb - 0.03, 0.72}, identity, TextureKind::kWood, t, s + 3, 0, &quads);
-    AddBox({xb - 0.08, yb - 0.08, 0}, {xb - 0.03, yb - 0.03, 0.72}, identity, TextureKind::kWood, t, s + 4, 0, &quads);
+    AddBox({xa, ya, 0.72}, {xb, yb, 0.76}, identity, kind(TextureKind::kWood), fine, s, 0, &quads);
+    AddBox({xa + 0.03, ya + 0.03, 0}, {xa + 0.08, ya + 0.08, 0.72}, identity, kind(TextureKind::kWood), t, s + 1, 0,
+           &quads);
+    AddBox({xb - 0.08, ya + 0.03, 0}, {xb - 0.03, ya + 0.08, 0.72}, identity, kind(TextureKind::kWood), t, s + 2, 0,
+           &quads);
+    AddBox({xa + 0.03, yb - 0.08, 0}, {xa + 0.08, yb - 0.03, 0.72}, identity, kind(TextureKind::kWood), t, s + 3, 0,
+           &quads);
+    AddBox({xb - 0.08, yb - 0.08, 0}, {xb - 0.03, yb - 0.03, 0.72}, identity, kind(TextureKind::kWood), t, s + 4, 0,
+           &quads);
   };
   desk(-2.6, -1.0, 3.2, 4.0, seed + 100);
   desk(0.9, 2.5, 3.6, 4.4, seed + 200);
-  AddBox({x0, 0.2, 0}, {x0 + 0.45, 1.4, 1.25}, identity, TextureKind::kWood, t, seed + 300, 0, &quads);  // cabinet
-  AddBox({-1.0, y1 - 0.35, 1.3}, {1.2, y1 - 0.02, 1.34}, identity, TextureKind::kWood, t, seed + 310, 0,
-         &quads);                                                                                               // shelf
-  AddBox({x1 - 0.5, 0.0, 0}, {x1 - 0.02, 1.0, 0.9}, identity, TextureKind::kCarton, t, seed + 320, 0, &quads);  // crate
+  AddBox({x0, 0.2, 0}, {x0 + 0.45, 1.4, 1.25}, identity, kind(TextureKind::kWood), t, seed + 300, 0,
+         &quads);  // cabinet
+  AddBox({-1.0, y1 - 0.35, 1.3}, {1.2, y1 - 0.02, 1.34}, identity, kind(TextureKind::kWood), t, seed + 310, 0,
+         &quads);  // shelf
+  AddBox({x1 - 0.5, 0.0, 0}, {x1 - 0.02, 1.0, 0.9}, identity, kind(TextureKind::kCarton), t, seed + 320, 0,
+         &quads);  // crate
 
   std::mt19937 rng(seed + 400);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -120,7 +131,7 @@ std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed
     const double cx = uni(s.xa, std::max(s.xa + 0.01, s.xb - sx)), cy = uni(s.ya, std::max(s.ya + 0.01, s.yb - sy));
     const Pose world_from_box =
         Pose(Eigen::Translation3d(cx, cy, s.z) * Eigen::AngleAxisd(uni(-0.5, 0.5), Eigen::Vector3d::UnitZ()));
-    AddBox({0, 0, 0}, {sx, sy, sz}, world_from_box, TextureKind::kCarton, fine,
+    AddBox({0, 0, 0}, {sx, sy, sz}, world_from_box, kind(TextureKind::kCarton), fine,
            seed + 500 + static_cast<std::uint32_t>(i) * 13, 0, &quads);
   }
   return quads;

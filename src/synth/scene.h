@@ -46,14 +46,16 @@ struct RoomOptions {
   double height_m = 2.8;        // metres along z, floor at z = 0
   double texel_size_m = 0.005;  // metres per texel of walls and floor
   int furniture = 10;           // number of extra boxes on floor and desks (0 or more)
+  bool plain = false;           // every surface plain paint (TextureKind::kPaint): low texture, where
+                                // the edges of walls and furniture are what a tracker can hold on to
 
   // Throws InputError naming the key ("room.width_m must be > 2, got 1").
   void Check() const;
 };
 
 // The static indoor scene: room shell, two desks with things on them, a cabinet, shelves,
-// boxes; deterministic from the seed. A lane y in [1.6, 2.9] and x in [-0.6, 0.6] for all y
-// are kept free for walking people.
+// boxes, textured or (plain) painted; deterministic from the seed. A lane y in [1.6, 2.9] and x in [-0.6, 0.6] for all
+// y are kept free for walking people.
 std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& options, std::uint32_t seed);
 
 }  // namespace dynvo

@@ -11,6 +11,8 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "features/feature_filter.h"
+#include "lines/line_from_depth.h"
+#include "lines/line_matcher.h"
 #include "tracking/new_point_confirmation.h"
 #include "tracking/static_verification.h"
 
@@ -120,10 +122,14 @@ void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, co
   result.map_ms = MillisecondsSince(start);
 }
 
-TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked) {
+TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked,
+                                   const FrameLines* lines) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
+  frame_lines_ = lines != nullptr ? *lines : FrameLines{};
+  lines_matched_.assign(frame_lines_.size(), 0);
+  line_observations_.clear();
   if (!initialized_) return Initialise(features, stamp);
 
   TrackingResult result;
@@ -139,6 +145,7 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, 
   if (estimate.ok && options_.new_point_confirmations > 0) ConfirmNewMapPoints(used, matches, estimate, result);
   moving_features_.assign(used.size(), 0);
   if (estimate.ok && options_.coherent_motion.enabled) RejectCoherentMotion(used, matches, estimate, result);
+  if (estimate.ok && frame_lines_.size() > 0) RefineWithLines(used, matches, estimate, result);
   if (estimate.ok)
     AcceptPose(used, stamp, matches, estimate, result);
   else
@@ -382,6 +389,61 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
   result.pose_ms += MillisecondsSince(start);
 }
 
+void FrameTracker::RefineWithLines(const FrameFeatures& features, const std::vector<Match>& matches,
+                                   PoseEstimate& estimate, TrackingResult& result) {
+  const SteadyClock::time_point start = SteadyClock::now();
+  std::vector<Line3d> map_lines;                 // every kept keyframe's lines, in the world
+  std::vector<KeyframeLineObservation> anchors;  // where each is anchored
+  for (const Keyframe& keyframe : map_.keyframes()) {
+    const Pose world_from_keyframe = keyframe.camera_from_world.inverse();
+    for (size_t i = 0; i < keyframe.lines_in_camera.size(); ++i) {
+      const Line3d& line = keyframe.lines_in_camera[i];
+      map_lines.push_back({world_from_keyframe * line.start, world_from_keyframe * line.end});
+      anchors.push_back({keyframe.id, i, Eigen::Vector3d::Zero()});
+    }
+  }
+  const std::vector<LineMatch> line_matches =
+      MatchLinesByProjection(map_lines, frame_lines_, camera_, estimate.camera_from_world, LineMatchOptions{});
+  result.lines_matched = static_cast<int>(line_matches.size());
+  if (!line_matches.empty()) {
+    LineMatches matched;
+    for (const LineMatch& m : line_matches) {
+      matched.lines_in_world.push_back(map_lines[static_cast<size_t>(m.map_line)]);
+      matched.observed.push_back(ImageLineCoefficients(frame_lines_.segments[static_cast<size_t>(m.frame_line)]));
+    }
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    Correspondences(features, matches, points, pixels);
+    PoseEstimate joint =
+        RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &estimate.inliers, &matched);
+    if (joint.ok && joint.num_inliers >= options_.min_matches) {
+      result.line_inliers = joint.num_line_inliers;
+      for (size_t i = 0; i < line_matches.size(); ++i) {
+        if (!joint.line_inliers[i]) continue;
+        KeyframeLineObservation seen = anchors[static_cast<size_t>(line_matches[i].map_line)];
+        seen.observed = matched.observed[i];
+        line_observations_.push_back(seen);
+      }
+      estimate = std::move(joint);
+    }
+    // A matched line explains its segment whether or not it is an inlier now: no new map line.
+    for (const LineMatch& m : line_matches) lines_matched_[static_cast<size_t>(m.frame_line)] = 1;
+  }
+  result.line_ms += MillisecondsSince(start);
+}
+
+std::vector<Line3d> FrameTracker::NewKeyframeLines() const {
+  std::vector<Line3d> lines;
+  if (frame_lines_.depth.empty()) return lines;
+  for (size_t j = 0; j < frame_lines_.size(); ++j) {
+    if (lines_matched_[j]) continue;
+    const std::optional<Line3d> line =
+        LineFromDepth(frame_lines_.detected[j], frame_lines_.segments[j], frame_lines_.depth, camera_, {});
+    if (line) lines.push_back(*line);
+  }
+  return lines;
+}
+
 void FrameTracker::CollectVisiblePoints(const Pose& camera_from_world, double margin_px) {
   visible_ids_.clear();
   visible_points_.clear();
@@ -420,6 +482,7 @@ bool FrameTracker::SeedMap(const FrameFeatures& features, double stamp, const Po
                       frame_index_, features.keypoints[i].angle);
     keyframe.observations.push_back({id, features.pixels[i], features.depths[i]});
   }
+  keyframe.lines_in_camera = NewKeyframeLines();
   map_.AddKeyframe(std::move(keyframe));
   frames_since_keyframe_ = 0;
   reference_tracked_ = 0;  // nothing tracked yet: the ratio criterion waits for a keyframe
@@ -468,6 +531,11 @@ void FrameTracker::InsertKeyframe(const FrameFeatures& features, double stamp, c
     keyframe.observations.push_back({id, features.pixels[i], ba_depth(features.depths[i])});
     map_.SetUnconfirmedFrames(id, options_.new_point_confirmations);
   }
+  const SteadyClock::time_point lines_start = SteadyClock::now();
+  keyframe.lines_in_camera = NewKeyframeLines();
+  keyframe.line_observations = line_observations_;
+  result.lines_added = static_cast<int>(keyframe.lines_in_camera.size());
+  result.line_ms += MillisecondsSince(lines_start);
   map_.AddKeyframe(std::move(keyframe));
   result.keyframe_inserted = true;
   frames_since_keyframe_ = 0;

@@ -12,6 +12,7 @@
 
 #include "core/camera.h"
 #include "features/frame_features.h"
+#include "lines/line_extractor.h"
 #include "mapping/keyframe_policy.h"
 #include "mapping/local_map.h"
 #include "pose/pose_solver.h"
@@ -86,7 +87,11 @@ struct TrackingResult {
                                                  // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;              // false: the new keyframe's depths were left out of BA
                                                  // (see max_ba_depth_rotation_deg_s)
+  int lines_matched = 0;                         // frame lines matched to map lines (features.lines)
+  int line_inliers = 0;                          // of those, inliers of the final pose
+  int lines_added = 0;                           // map lines a new keyframe added
   double match_ms = 0, pose_ms = 0, map_ms = 0;  // per-stage wall times, ms
+  double line_ms = 0;                            // line matching, refinement and new map lines, ms
 };
 
 class FrameTracker {
@@ -99,9 +104,12 @@ class FrameTracker {
   // the identity (state kInitializing, with a note); that frame's camera is the world frame.
   // `masked` (optional) are the features the dynamic mask removed: with readmit_masked_px > 0,
   // those that match the map at the pose from `features` within that error rejoin the final
-  // pose refinement and the keyframe; the others are never used. Throws InputError when the
-  // feature arrays disagree in size.
-  TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr);
+  // pose refinement and the keyframe; the others are never used. `lines` (optional) are the
+  // frame's line segments off the mask: matched to the map's lines at the pose from the points,
+  // they refine it with the points (PoseLineCost), and a keyframe keeps those with depth that
+  // matched none. Throws InputError when the feature arrays disagree in size.
+  TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr,
+                       const FrameLines* lines = nullptr);
 
   // The local map as of the last Track (and the mapper's work on it since).
   const LocalMap& map() const { return map_; }
@@ -163,6 +171,13 @@ class FrameTracker {
   // map, and their features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
+  // Refines `estimate` with the frame's lines matched to the map's at its pose as well as the
+  // points; kept when that succeeds with at least min_matches point inliers. Marks the matched
+  // frame lines (lines_matched_) and keeps the inliers' observations (line_observations_).
+  void RefineWithLines(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
+                       TrackingResult& result);
+  // The frame's lines (frame_lines_) with depth that matched no map line, in camera coordinates.
+  std::vector<Line3d> NewKeyframeLines() const;
   // Points of the map that may be visible from `camera_from_world` (margin in pixels).
   void CollectVisiblePoints(const Pose& camera_from_world, double margin_px);
   // Clears the map and seeds it with the frame's depth features (depth > 0; the depth range is
@@ -190,6 +205,9 @@ class FrameTracker {
   std::vector<uint8_t> visible_unconfirmed_;  // 1 = the point awaits confirmation
   std::vector<uint8_t> moving_features_;      // 1 per feature of the frame flagged by coherent_motion
   cv::Mat visible_descriptors_;
+  FrameLines frame_lines_;                                  // the frame's lines (none without features.lines)
+  std::vector<uint8_t> lines_matched_;                      // 1 per frame line matched to a map line
+  std::vector<KeyframeLineObservation> line_observations_;  // the frame's line inliers, for its keyframe
 };
 
 }  // namespace dynvo

@@ -62,6 +62,14 @@ std::vector<LineSegment> AllSides() {
   return sides;
 }
 
+// Detection, the lines off `exclude` kept, described: what a keyframe needs.
+FrameLines ExtractLines(const cv::Mat& gray, const cv::Mat& exclude, const Camera& camera,
+                        const LineExtractorOptions& options) {
+  FrameLines lines = KeepLines(DetectLines(gray, cv::Mat(), camera, options), exclude, options);
+  DescribeLines(gray, &lines);
+  return lines;
+}
+
 TEST(ExtractLines, FindsEverySideOfTheRectanglesAndNothingElseLongestFirst) {
   const Camera camera;
   const FrameLines lines = ExtractLines(RectanglesImage(), cv::Mat(), camera, LineExtractorOptions{});
@@ -161,12 +169,10 @@ TEST(ExtractLines, UndistortsTheEndsWithTheCamerasDistortion) {
 
 TEST(ExtractLines, BadInputIsOneClearError) {
   const Camera camera;
-  EXPECT_NE(
-      test::InputErrorOf([&] { ExtractLines(cv::Mat(480, 640, CV_8UC3), cv::Mat(), camera, {}); }).find("CV_8UC1"),
-      std::string::npos);
-  EXPECT_NE(test::InputErrorOf([&] {
-              ExtractLines(RectanglesImage(), cv::Mat(10, 10, CV_8UC1), camera, {});
-            }).find("exclusion mask"),
+  EXPECT_NE(test::InputErrorOf([&] { DetectLines(cv::Mat(480, 640, CV_8UC3), cv::Mat(), camera, {}); }).find("CV_8UC1"),
+            std::string::npos);
+  const FrameLines lines = DetectLines(RectanglesImage(), cv::Mat(), camera, {});
+  EXPECT_NE(test::InputErrorOf([&] { KeepLines(lines, cv::Mat(10, 10, CV_8UC1), {}); }).find("exclusion mask"),
             std::string::npos);
   LineExtractorOptions options;
   options.detect_level = 3;

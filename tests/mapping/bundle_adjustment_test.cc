@@ -135,6 +135,66 @@ TEST(BundleAdjustment, RemovesGrossOutliers) {
   EXPECT_LE(map.num_points(), points_before);
 }
 
+// The scene's map rebuilt with the newest keyframe moved by `delta`, seeing only every
+// `point_step`-th of its points (with 3 px of noise), and, with `with_lines`, 40 segments
+// anchored in the first keyframe that it sees exactly.
+LocalMap MapWithFewPointsAndLines(const Scene& s, const Pose& delta, int point_step, bool with_lines) {
+  LocalMap map;
+  for (size_t i = 0; i < s.true_points.size(); ++i)
+    map.AddPoint(s.true_points[i], cv::Mat(1, 32, CV_8UC1, cv::Scalar(0)), 0);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> ux(-1.5, 1.5), uy(-1.0, 1.0), uz(2.0, 4.0);
+  std::normal_distribution<double> noise(0.0, 3.0);
+  std::vector<Line3d> in_world;
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::Vector3d start(ux(rng), uy(rng), uz(rng));
+    in_world.push_back({start, start + 0.6 * Eigen::Vector3d::Unit(i % 3)});
+  }
+  const size_t newest = s.map.num_keyframes() - 1;
+  for (size_t k = 0; k <= newest; ++k) {
+    Keyframe keyframe = s.map.keyframes()[k];
+    const Pose& truth = s.true_camera_from_world[k];
+    if (k == 0)
+      for (const Line3d& l : in_world) keyframe.lines_in_camera.push_back({truth * l.start, truth * l.end});
+    if (k == newest) {
+      keyframe.camera_from_world = delta * truth;
+      std::vector<KeyframeObservation> few;
+      for (size_t i = 0; i < keyframe.observations.size(); i += static_cast<size_t>(point_step)) {
+        few.push_back(keyframe.observations[i]);
+        few.back().pixel += Eigen::Vector2d(noise(rng), noise(rng));
+      }
+      keyframe.observations = few;
+      for (size_t i = 0; with_lines && i < in_world.size(); ++i) {
+        const LineSegment seen{s.camera.Project(truth * in_world[i].start), s.camera.Project(truth * in_world[i].end)};
+        keyframe.line_observations.push_back({s.map.keyframes()[0].id, i, ImageLineCoefficients(seen)});
+      }
+    }
+    map.AddKeyframe(keyframe);
+  }
+  return map;
+}
+
+// The newest keyframe sees a few noisy points and the lines of the first (fixed) keyframe
+// exactly: the lines bring its pose much closer to the truth than its points alone.
+TEST(BundleAdjustment, LinesAnchoredInAnotherKeyframePullAKeyframeBack) {
+  Scene s;
+  BuildScene(s, 4, 0.0, 9);
+  const Pose delta = PoseFromAxisAngle({0.01, -0.01, 0.005}, {0.03, -0.02, 0.02});
+  BundleAdjustmentOptions options;
+  options.virtual_baseline_m = 0.0;  // image positions only: the noisy points' pull
+  double error[2];
+  for (int with_lines = 0; with_lines < 2; ++with_lines) {
+    LocalMap map = MapWithFewPointsAndLines(s, delta, 20, with_lines == 1);
+    const BundleAdjustmentReport report = RunLocalBundleAdjustment(map, s.camera, options);
+    ASSERT_TRUE(report.ok) << report.failure;
+    EXPECT_EQ(report.num_line_observations, with_lines == 1 ? 40 : 0);
+    error[with_lines] = TranslationError(map.keyframes().back().camera_from_world, s.true_camera_from_world.back());
+  }
+  EXPECT_LT(error[1], 0.5 * error[0]) << "points alone " << error[0] << " m, with lines " << error[1] << " m";
+  // The noisy points still pull (3 px each against exact lines): a few millimetres remain.
+  EXPECT_LT(error[1], 0.006) << error[0];
+}
+
 TEST(BundleAdjustment, DisabledOrTooSmallLeavesTheMapAlone) {
   Scene s;
   BuildScene(s, 3, 0.0, 7);

@@ -235,6 +235,7 @@ TEST_F(EndToEnd, ThreadsChangeNoResult) {
       {"dynvo.json", {}},
       {"dynvo.json", {"local_ba.merge_delay_frames=0"}},
       {"baseline.json", {}},
+      {"baseline.json", {"features.lines.enabled=true"}},
       {"paper.json", {"dynamic_mask.backward=\"triplet\""}}};
   for (const auto& [config, overrides] : cases) {
     const std::string ahead = Run(config, "ahead_" + config + std::to_string(overrides.size()), overrides, 3);
@@ -244,6 +245,28 @@ TEST_F(EndToEnd, ThreadsChangeNoResult) {
     EXPECT_EQ(trajectory, ReadTextFile(in_turn + "/trajectory.txt")) << config;
     EXPECT_EQ(TimingWithoutTimes(ahead), TimingWithoutTimes(in_turn)) << config;
   }
+}
+
+std::vector<std::string> TimingColumn(const std::string& out_dir, const std::string& name);
+
+// With features.lines.enabled, each frame's line segments are counted in timing.csv, tracked
+// frames match most of them to the map, and most matches are inliers of the pose; without it
+// the columns are empty.
+TEST_F(EndToEnd, LinesJoinThePoseWhenOn) {
+  const std::string on = Run("baseline.json", "lines_on", {"features.lines.enabled=true"}, 1);
+  const std::vector<std::string> lines = TimingColumn(on, "lines"), matched = TimingColumn(on, "lines_matched"),
+                                 inliers = TimingColumn(on, "line_inliers");
+  ASSERT_EQ(lines.size(), 120u);
+  int total = 0, total_matched = 0, total_inliers = 0;
+  for (size_t i = 1; i < lines.size(); ++i) {
+    total += std::stoi(lines[i]);
+    total_matched += std::stoi(matched[i]);
+    total_inliers += std::stoi(inliers[i]);
+  }
+  EXPECT_GT(total, 119 * 20) << "fewer than 20 lines per frame";
+  EXPECT_GT(total_matched, total / 3);
+  EXPECT_GT(total_inliers, total_matched * 2 / 3);
+  for (const std::string& cell : TimingColumn(Run("baseline.json", "lines_off", {}, 1), "lines")) EXPECT_EQ(cell, "");
 }
 
 // timing.csv's column `name`, one cell per row ("" = none).

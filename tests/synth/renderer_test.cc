@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 #include "core/pose.h"
@@ -189,6 +191,28 @@ TEST(Renderer, RowBandsAssembleTheFullRenderByteForByte) {
                           &assembled);
     EXPECT_EQ(DifferingPixels(assembled, full), 0) << bands << " bands";
   }
+}
+
+// The plain room is low texture: from the same place, FAST finds under a quarter of the
+// textured room's corners, while its depth (the same geometry) is the same.
+TEST(Renderer, ThePlainRoomHasFewCornersAndTheSameGeometry) {
+  Camera camera;  // 640 x 480, where a tracker sees it
+  const Renderer renderer(camera);
+  const Pose camera_from_world = PoseFromAxisAngle({-1.5, 0.1, 0.05}, {0.2, 0.3, 1.3}).inverse();
+  RoomOptions room;
+  std::vector<cv::KeyPoint> corners[2];
+  cv::Mat depth[2];
+  for (int plain = 0; plain < 2; ++plain) {
+    room.plain = plain == 1;
+    const RenderResult render = renderer.Render(MakeRoomScene(room, 3), camera_from_world);
+    cv::Mat grey;
+    cv::cvtColor(render.bgr, grey, cv::COLOR_BGR2GRAY);
+    cv::FAST(grey, corners[plain], 20);
+    depth[plain] = render.depth;
+  }
+  EXPECT_GT(corners[0].size(), 1000u) << corners[1].size();
+  EXPECT_LT(corners[1].size(), corners[0].size() / 4) << corners[1].size() << " against " << corners[0].size();
+  EXPECT_EQ(cv::countNonZero(depth[0] != depth[1]), 0);
 }
 
 TEST(Renderer, RenderRowsWritesOnlyItsRowsAndRejectsBadRanges) {

@@ -215,7 +215,7 @@ class WithFakeBinaries(unittest.TestCase):
         ok = [(r["sequence"], r["config"], r["ratio"], r["mask_iou"], r["ms_p90"])
               for r in rows if r["status"] == "ok"]
         scenarios = suite.PRESETS
-        paths = ("xyz_s1", "rpy_fast_s4")  # the dev split's synthetic camera paths and scene seeds
+        paths = ("xyz_s1", "rpy_fast_s4", "xyz_plain_s5")  # the dev split's synthetic camera paths, rooms, seeds
         self.assertEqual(ok, [("synth_%s_%s" % (s, p), c, "2.0", "-" if c == "baseline" else "0.5", "28.0")
                               for p in paths for s in scenarios for c in ("baseline", "paper")])
         self.assertEqual([r["sequence"] for r in rows if r["status"] == suite.NOT_RUN],

@@ -62,6 +62,7 @@ class Source:
     where: str                     # INSERT: real folder in SHARED/data/tum; SYNTH: camera path
     seed: int                      # --seed of the generator
     person: tuple[str, ...] = ()   # INSERT only: --person, --person-box, --person-depth arguments
+    plain: bool = False            # SYNTH only: the room in plain paint (--plain-room): low texture
 
 
 # The two splits, every sequence of each.
@@ -74,9 +75,11 @@ SOURCES = (
     Source("dev",        INSERT, "rgbd_dataset_freiburg1_rpy_head150",       1, DEV_PERSON),
     Source("dev",        SYNTH,  "xyz",                                      1),
     Source("dev",        SYNTH,  "rpy_fast",                                 4),
+    Source("dev",        SYNTH,  "xyz",                                      5, plain=True),
     Source("validation", INSERT, "rgbd_dataset_freiburg2_desk_head50",       2, VALIDATION_PERSON),
     Source("validation", SYNTH,  "rpy",                                      2),
     Source("validation", SYNTH,  "halfsphere",                               3),
+    Source("validation", SYNTH,  "halfsphere",                               6, plain=True),
 )
 
 
@@ -134,14 +137,17 @@ def source_rows(source: Source, frames: int, seq_dir: str, shared: str) -> list[
                  ("dynvo-insert-people", "--dataset", real, "--preset", p, "--seed", seed)
                  + tuple(arg.format(shared=shared) for arg in source.person)) for p in PRESETS]
     else:
+        room = ("--plain-room",) if source.plain else ()
+        path = source.where + ("_plain" if source.plain else "")
+
         def synth(scenario: str) -> tuple[str, ...]:
             return ("dynvo-synth", "--scenario", scenario, "--camera-path", source.where,
-                    "--seed", seed, "--frames", str(frames))
-        twin_name = f"synth_none_{source.where}_s{seed}"
+                    "--seed", seed, "--frames", str(frames)) + room
+        twin_name = f"synth_none_{path}_s{seed}"
         # The twin has the people's sensor (the tum_* scenarios always have Kinect v1 timing).
         twin = Sequence(twin_name, os.path.join(seq_dir, twin_name), synth("none") + ("--kinect-sensor",))
         available = True
-        made = [(f"synth_{p}_{source.where}_s{seed}", synth(p)) for p in PRESETS]
+        made = [(f"synth_{p}_{path}_s{seed}", synth(p)) for p in PRESETS]
     return [RowSpec(source.split, source.kind, Sequence(name, os.path.join(seq_dir, name), command),
                     twin, available) for name, command in made]
 
