@@ -180,6 +180,9 @@ DynvoRun RunDynvo(const std::vector<dynvo::RgbdFrame>& frames, const dynvo::Came
     run.stages["pose"].push_back(rec.times.pose_ms);
     run.stages["map"].push_back(rec.times.map_ms);
     run.stages["local_ba"].push_back(rec.times.local_ba_ms);
+    if (rec.lines >= 0) run.stages["lines"].push_back(rec.times.lines_ms);
+    // Keyframes apart: they add map points and lines, and start a local BA.
+    run.stages[rec.keyframe ? "frame (keyframes)" : "frame (other frames)"].push_back(rec.times.processing_ms);
     run.features_total.push_back(rec.features_total);
     run.features_removed.push_back(rec.features_removed);
     run.dynamic_ratio.push_back(rec.dynamic_ratio);

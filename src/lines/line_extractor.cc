@@ -135,7 +135,8 @@ FrameLines DetectLines(const cv::Mat& gray, const cv::Mat& depth, const Camera& 
   return lines;
 }
 
-FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const LineExtractorOptions& options) {
+FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const LineExtractorOptions& options,
+                     std::vector<LineSegment>* masked) {
   options.Check();
   if (!exclude.empty() && (exclude.type() != CV_8UC1 || exclude.size() != lines.image_size))
     throw InputError("KeepLines: the exclusion mask must be CV_8UC1 of the image's size");
@@ -143,7 +144,10 @@ FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const Line
   kept.depth = lines.depth;
   kept.image_size = lines.image_size;
   for (size_t i = 0; i < lines.size() && static_cast<int>(kept.size()) < options.max_lines; ++i) {
-    if (!exclude.empty() && MaskedShare(lines.detected[i], exclude) > options.max_masked_share) continue;
+    if (!exclude.empty() && MaskedShare(lines.detected[i], exclude) > options.max_masked_share) {
+      if (masked != nullptr) masked->push_back(lines.detected[i]);
+      continue;
+    }
     kept.detected.push_back(lines.detected[i]);
     kept.segments.push_back(lines.segments[i]);
     if (!lines.descriptors.empty()) kept.descriptors.push_back(lines.descriptors.row(static_cast<int>(i)));

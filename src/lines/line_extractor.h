@@ -47,9 +47,11 @@ FrameLines DetectLines(const cv::Mat& gray, const cv::Mat& depth, const Camera& 
                        const LineExtractorOptions& options);
 
 // The longest `max_lines` of `lines` with at most `max_masked_share` of their length where
-// `exclude` (CV_8UC1 of the image's size, non-zero = excluded; may be empty) is set, in order.
-// Throws InputError when the mask is not CV_8UC1 of the lines' image size.
-FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const LineExtractorOptions& options);
+// `exclude` (CV_8UC1 of the image's size, non-zero = excluded; may be empty) is set, in order;
+// `masked` (optional) gets the detected segments dropped for lying on it. Throws InputError
+// when the mask is not CV_8UC1 of the lines' image size.
+FrameLines KeepLines(const FrameLines& lines, const cv::Mat& exclude, const LineExtractorOptions& options,
+                     std::vector<LineSegment>* masked = nullptr);
 
 // Fills `lines->descriptors` with the LBD descriptor of each detected segment on `gray`.
 void DescribeLines(const cv::Mat& gray, FrameLines* lines);

@@ -89,6 +89,21 @@ cv::Mat DrawDetections(const cv::Mat& bgr, const MaskPacket& mask) {
   return canvas;
 }
 
+// Frame t with its line segments (features.lines): pose inliers green, matched to the map but
+// outliers yellow, unmatched blue, dropped for lying on the mask red.
+cv::Mat DrawLines(const cv::Mat& bgr, const FeaturePacket& features, const TrackingResult& tracking) {
+  if (!features.lines) return cv::Mat();
+  cv::Mat canvas = bgr.clone();
+  const auto draw = [&](const LineSegment& s, const cv::Scalar& color) {
+    cv::line(canvas, cv::Point2d(s.start.x(), s.start.y()), cv::Point2d(s.end.x(), s.end.y()), color, 2, cv::LINE_AA);
+  };
+  const cv::Scalar colors[] = {cv::Scalar(255, 128, 0), cv::Scalar(0, 220, 255), cv::Scalar(0, 200, 0)};
+  for (size_t i = 0; i < features.lines->size(); ++i)
+    draw(features.lines->detected[i], colors[i < tracking.line_states.size() ? tracking.line_states[i] : 0]);
+  for (const LineSegment& s : features.masked_lines) draw(s, cv::Scalar(0, 0, 255));
+  return canvas;
+}
+
 }  // namespace
 
 std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const TrackingResult& tracking) {
@@ -147,6 +162,7 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
       {"depth_change", mask.change_seeds},
       {"map_occlusion", mask.map_occlusion},
       {"map_occlusion_candidates", mask.map_occlusion_candidates},
+      {"lines", DrawLines(current_bgr, processed.stages.features, processed.stages.tracking)},
       {"detections",
        !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask) : cv::Mat()}};
   for (const auto& [name, image] : additions)

@@ -72,7 +72,7 @@ FeaturePacket FeatureStage::Finish(const RgbdFrame& frame, const MaskPacket& mas
   if (pending_lines_.valid()) {
     start = SteadyClock::now();
     const LineDetection detection = pending_lines_.Get();
-    packet.lines = KeepLines(detection.lines, mask.mask, options_.lines);
+    packet.lines = KeepLines(detection.lines, mask.mask, options_.lines, &packet.masked_lines);
     packet.lines_ms = detection.ms + MillisecondsSince(start);
   }
   // The frame as the refill describes it: with refill_from_background, the mask's pixels are the

@@ -74,12 +74,13 @@ struct MaskPacket {
 // Frame t's features, split by its mask.
 struct FeaturePacket {
   size_t frame = 0;
-  FeatureSplit split;               // kept (for the pose) and removed (on the mask)
-  std::optional<FrameLines> lines;  // features.lines.enabled: the line segments off the mask
-  cv::Mat described;                // refill_from_background: frame t as the refill described it
-  double features_ms = 0.0;         // extraction, background fill and refill
-  double filter_ms = 0.0;           // splitting by the mask
-  double lines_ms = 0.0;            // line detection (on the executor, beside the rest) and keeping those off the mask
+  FeatureSplit split;                     // kept (for the pose) and removed (on the mask)
+  std::optional<FrameLines> lines;        // features.lines.enabled: the line segments off the mask
+  std::vector<LineSegment> masked_lines;  // those dropped for lying on it (as detected)
+  cv::Mat described;                      // refill_from_background: frame t as the refill described it
+  double features_ms = 0.0;               // extraction, background fill and refill
+  double filter_ms = 0.0;                 // splitting by the mask
+  double lines_ms = 0.0;  // line detection (on the executor, beside the rest) and keeping those off the mask
 };
 
 // Everything the pipeline produced for one frame.

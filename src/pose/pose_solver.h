@@ -25,7 +25,7 @@ struct PoseSolverOptions {
   int refine_iterations = 10;         // Ceres iterations per round (>= 1)
   int refine_rounds = 2;              // refine, drop outliers, refine again (>= 1)
   double outlier_threshold_px = 3.0;  // residual above -> outlier after a round (pixels, > 0)
-  double line_weight = 1.0;           // a line's cost against a point's (> 0; see PoseLineCost)
+  double line_weight = 3.0;           // a line's cost against a point's (> 0; see PoseLineCost)
 
   // Throws InputError naming the key "tracking.pose.<field>" when a field is out of range.
   void Check() const;

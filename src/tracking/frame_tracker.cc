@@ -56,6 +56,8 @@ void TrackerOptions::Check() const {
   RequireOption(new_point_max_shift_m >= 0.0, "tracking", "new_point_max_shift_m", ">= 0", new_point_max_shift_m);
   RequireOption(lost_frames_before_reseed >= 1, "tracking", "lost_frames_before_reseed", ">= 1",
                 lost_frames_before_reseed);
+  RequireOption(lines_max_rotation_deg_s >= 0.0, "tracking", "lines_max_rotation_deg_s", ">= 0",
+                lines_max_rotation_deg_s);
 }
 
 FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
@@ -72,6 +74,7 @@ TrackingResult FrameTracker::Initialise(const FrameFeatures& features, double st
   if (SeedMap(features, stamp, result.world_from_camera)) {
     initialized_ = true;
     result.keyframe_inserted = true;
+    result.lines_added = static_cast<int>(map_.keyframes().back().lines_in_camera.size());
   } else {
     result.note = "too few features with depth to initialise the map";
   }
@@ -145,7 +148,8 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, 
   if (estimate.ok && options_.new_point_confirmations > 0) ConfirmNewMapPoints(used, matches, estimate, result);
   moving_features_.assign(used.size(), 0);
   if (estimate.ok && options_.coherent_motion.enabled) RejectCoherentMotion(used, matches, estimate, result);
-  if (estimate.ok && frame_lines_.size() > 0) RefineWithLines(used, matches, estimate, result);
+  if (estimate.ok && frame_lines_.size() > 0 && !TurnsTooFastForLines(estimate, stamp))
+    RefineWithLines(used, matches, estimate, result);
   if (estimate.ok)
     AcceptPose(used, stamp, matches, estimate, result);
   else
@@ -389,6 +393,15 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
   result.pose_ms += MillisecondsSince(start);
 }
 
+bool FrameTracker::TurnsTooFastForLines(const PoseEstimate& estimate, double stamp) {
+  const double max_rad_s = options_.lines_max_rotation_deg_s * 3.14159265358979323846 / 180.0;
+  if (max_rad_s <= 0.0 || motion_.AngularSpeedTo(estimate.camera_from_world.inverse(), stamp) <= max_rad_s)
+    return false;
+  frame_lines_ = FrameLines{};  // no matches, no map lines from this frame
+  lines_matched_.clear();
+  return true;
+}
+
 void FrameTracker::RefineWithLines(const FrameFeatures& features, const std::vector<Match>& matches,
                                    PoseEstimate& estimate, TrackingResult& result) {
   const SteadyClock::time_point start = SteadyClock::now();
@@ -416,10 +429,13 @@ void FrameTracker::RefineWithLines(const FrameFeatures& features, const std::vec
     Correspondences(features, matches, points, pixels);
     PoseEstimate joint =
         RefinePose(points, pixels, camera_, estimate.camera_from_world, options_.pose, &estimate.inliers, &matched);
+    result.line_states.assign(frame_lines_.size(), 0);
+    for (const LineMatch& m : line_matches) result.line_states[static_cast<size_t>(m.frame_line)] = 1;
     if (joint.ok && joint.num_inliers >= options_.min_matches) {
       result.line_inliers = joint.num_line_inliers;
       for (size_t i = 0; i < line_matches.size(); ++i) {
         if (!joint.line_inliers[i]) continue;
+        result.line_states[static_cast<size_t>(line_matches[i].frame_line)] = 2;
         KeyframeLineObservation seen = anchors[static_cast<size_t>(line_matches[i].map_line)];
         seen.observed = matched.observed[i];
         line_observations_.push_back(seen);
@@ -562,6 +578,9 @@ void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry
   r->Bind(prefix + ".readmit_masked_px", &o->readmit_masked_px,
           "features the dynamic mask removed rejoin the pose and the keyframe when they match the "
           "map within this reprojection error (pixels) of the pose estimated without them; 0 = off");
+  r->Bind(prefix + ".lines_max_rotation_deg_s", &o->lines_max_rotation_deg_s,
+          "deg/s: a frame taken while the camera turns faster leaves its line segments out of the pose and the map "
+          "(features.lines; a rolling shutter shears them and motion blur shifts them then; 0 = never)");
   r->Bind(prefix + ".new_point_confirmations", &o->new_point_confirmations,
           "points a keyframe makes join the pose only after this many frames confirmed them "
           "(seen where the pose from the trusted points projects them); 0 = off");

@@ -56,6 +56,9 @@ struct TrackerOptions {
   double new_point_max_shift_m = 0.003;       // ... a frame checks them when they move its camera
                                               // centre by more than this from the pose of the trusted
                                               // points (metres, >= 0)
+  double lines_max_rotation_deg_s = 30.0;     // a frame taken while the camera turns faster leaves its
+                                              // lines out of the pose and the map: a rolling shutter
+                                              // shears them, motion blur shifts them (deg/s; 0 = never)
 
   // Throws InputError naming the key ("tracking.min_matches ...", "tracking.pose.min_inliers ...")
   // when this or any sub-option is out of range.
@@ -87,6 +90,7 @@ struct TrackingResult {
                                                  // (new_point_confirmations)
   bool keyframe_depth_in_ba = true;              // false: the new keyframe's depths were left out of BA
                                                  // (see max_ba_depth_rotation_deg_s)
+  std::vector<uint8_t> line_states;              // per frame line: 0 unmatched, 1 matched, 2 a pose inlier
   int lines_matched = 0;                         // frame lines matched to map lines (features.lines)
   int line_inliers = 0;                          // of those, inliers of the final pose
   int lines_added = 0;                           // map lines a new keyframe added
@@ -171,6 +175,9 @@ class FrameTracker {
   // map, and their features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
+  // True when the camera turns faster than lines_max_rotation_deg_s from the last frame to
+  // `estimate`: the frame's lines are then dropped (frame_lines_ emptied).
+  bool TurnsTooFastForLines(const PoseEstimate& estimate, double stamp);
   // Refines `estimate` with the frame's lines matched to the map's at its pose as well as the
   // points; kept when that succeeds with at least min_matches point inliers. Marks the matched
   // frame lines (lines_matched_) and keeps the inliers' observations (line_observations_).

@@ -6,21 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "core/pose.h"
+#include "pose/pose_cost_check.h"
 #include "pose/pose_line_cost.h"
 
 namespace dynvo {
 namespace {
 
 constexpr double kFx = 525, kFy = 520, kCx = 319.5, kCy = 239.5;
-
-void ToParameters(const Pose& camera_from_world, double* q, double* t) {
-  const Eigen::Quaterniond quat = PoseQuaternion(camera_from_world);
-  q[0] = quat.x();
-  q[1] = quat.y();
-  q[2] = quat.z();
-  q[3] = quat.w();
-  for (int k = 0; k < 3; ++k) t[k] = camera_from_world.translation()[k];
-}
 
 // The residual is the pose refinement's line error of the segment moved from the anchor into
 // the observer (T_b T_a^-1), whatever the two poses: zero when the observer sees it where
@@ -44,8 +36,8 @@ TEST(AnchoredLineError, IsTheLineErrorOfTheSegmentMovedFromTheAnchorIntoTheObser
         Eigen::Vector2d(-(exact.end - exact.start).y(), (exact.end - exact.start).x()).normalized();
     const LineSegment beside{exact.start + 5.0 * across, exact.end + 5.0 * across};
     double qa[4], ta[3], qb[4], tb[3];
-    ToParameters(a, qa, ta);
-    ToParameters(b, qb, tb);
+    test::ToPoseParameters(a, qa, ta);
+    test::ToPoseParameters(b, qb, tb);
     const double* parameters[4] = {qa, ta, qb, tb};
     for (const LineSegment& seen : {exact, beside}) {
       const Eigen::Vector3d l = ImageLineCoefficients(seen);

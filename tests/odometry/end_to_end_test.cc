@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
@@ -253,7 +254,8 @@ std::vector<std::string> TimingColumn(const std::string& out_dir, const std::str
 // frames match most of them to the map, and most matches are inliers of the pose; without it
 // the columns are empty.
 TEST_F(EndToEnd, LinesJoinThePoseWhenOn) {
-  const std::string on = Run("baseline.json", "lines_on", {"features.lines.enabled=true"}, 1);
+  const std::string on = (dir_->path() / "lines_on").string();
+  RunOn(sequence_, "baseline.json", on, {"features.lines.enabled=true"}, 1, {60});
   const std::vector<std::string> lines = TimingColumn(on, "lines"), matched = TimingColumn(on, "lines_matched"),
                                  inliers = TimingColumn(on, "line_inliers");
   ASSERT_EQ(lines.size(), 120u);
@@ -266,7 +268,16 @@ TEST_F(EndToEnd, LinesJoinThePoseWhenOn) {
   EXPECT_GT(total, 119 * 20) << "fewer than 20 lines per frame";
   EXPECT_GT(total_matched, total / 3);
   EXPECT_GT(total_inliers, total_matched * 2 / 3);
-  for (const std::string& cell : TimingColumn(Run("baseline.json", "lines_off", {}, 1), "lines")) EXPECT_EQ(cell, "");
+  // The debug panel draws them, the inliers green.
+  const cv::Mat panel = cv::imread(on + "/debug/frame_000060_lines.png");
+  ASSERT_FALSE(panel.empty());
+  cv::Mat green;
+  cv::inRange(panel, cv::Scalar(0, 200, 0), cv::Scalar(0, 200, 0), green);
+  EXPECT_GT(cv::countNonZero(green), 500);
+  const std::string off = (dir_->path() / "lines_off").string();
+  RunOn(sequence_, "baseline.json", off, {}, 1, {60});
+  for (const std::string& cell : TimingColumn(off, "lines")) EXPECT_EQ(cell, "");
+  EXPECT_FALSE(std::filesystem::exists(off + "/debug/frame_000060_lines.png"));
 }
 
 // timing.csv's column `name`, one cell per row ("" = none).

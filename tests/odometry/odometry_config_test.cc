@@ -41,11 +41,13 @@ TEST(OdometryConfig, PaperConfigIsThePapersMethodLiterally) {
   EXPECT_FALSE(c.tracking.coherent_motion.enabled);
 }
 
-TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMask) {
+TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMaskAndLines) {
   nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
   nlohmann::json ipl = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("ipl.json"), {}));
   EXPECT_EQ(ipl["mask_source"], "detector");
   EXPECT_EQ(ipl["detector"]["model"], "data/models/yolo-fastest-1.1_body.weights");  // tools/fetch_models.sh
+  EXPECT_EQ(ipl["features"]["lines"]["enabled"], true);  // the second paper's point-line tracking
+  ipl["features"]["lines"]["enabled"] = false;
   for (const char* section : {"mask_source", "detector", "dynamic_mask"}) {  // dynamic_mask: the unused differencing
     paper.erase(section);
     ipl.erase(section);

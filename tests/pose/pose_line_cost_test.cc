@@ -13,12 +13,13 @@
 
 #include "core/error.h"
 #include "core/pose.h"
+#include "pose/pose_cost_check.h"
 #include "pose/reprojection_error.h"
 
 namespace dynvo {
 namespace {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using test::RowMajor;
 
 constexpr double kFx = 525, kFy = 520, kCx = 319.5, kCy = 239.5;
 
@@ -70,12 +71,7 @@ Scene MakeScene(unsigned seed, int n, bool exact = false) {
     seen.end += error_px * (u(rng) > 0 ? 1.0 : -1.0) * across;
     s.observed.push_back(ImageLineCoefficients(seen));
   }
-  const Eigen::Quaterniond quat = PoseQuaternion(s.camera_from_world);
-  s.q[0] = quat.x();
-  s.q[1] = quat.y();
-  s.q[2] = quat.z();
-  s.q[3] = quat.w();
-  for (int k = 0; k < 3; ++k) s.t[k] = s.camera_from_world.translation()[k];
+  test::ToPoseParameters(s.camera_from_world, s.q, s.t);
   return s;
 }
 
@@ -129,36 +125,9 @@ TEST(PoseLineCost, ResidualsAndJacobiansMatchAutomaticDerivatives) {
 // Beyond the Huber scale too: the analytic Jacobians equal central differences along the six
 // tangent directions of the pose.
 TEST(PoseLineCost, JacobiansMatchCentralDifferences) {
-  const ceres::EigenQuaternionManifold manifold;
   const Scene s = MakeScene(5, 30);
-  const PoseLineCost cost(s.observed, s.lines, All(30), kFx, kFy, kCx, kCy, 3.0, 2.0);
-  RowMajor jq(60, 4), jt(60, 3);
-  Eigen::VectorXd r(60);
-  const double* parameters[2] = {s.q, s.t};
-  double* jacobians[2] = {jq.data(), jt.data()};
-  ASSERT_TRUE(cost.Evaluate(parameters, r.data(), jacobians));
-  RowMajor plus(4, 3);
-  ASSERT_TRUE(manifold.PlusJacobian(s.q, plus.data()));
-  RowMajor analytic(60, 6);
-  analytic << jq * plus, jt;
-  const double h = 1e-6;
-  for (int d = 0; d < 6; ++d) {
-    Eigen::VectorXd side[2];
-    for (int sign = 0; sign < 2; ++sign) {
-      double q[4], t[3] = {s.t[0], s.t[1], s.t[2]};
-      const double step = sign == 0 ? h : -h;
-      double delta[3] = {0, 0, 0};
-      if (d < 3) delta[d] = step;
-      ASSERT_TRUE(manifold.Plus(s.q, delta, q));
-      if (d >= 3) t[d - 3] += step;
-      const double* moved[2] = {q, t};
-      side[sign].resize(60);
-      ASSERT_TRUE(cost.Evaluate(moved, side[sign].data(), nullptr));
-    }
-    const Eigen::VectorXd numeric = (side[0] - side[1]) / (2.0 * h);
-    for (int row = 0; row < 60; ++row)
-      EXPECT_NEAR(analytic(row, d), numeric(row), 1e-5 * (1.0 + std::abs(numeric(row)))) << row << " " << d;
-  }
+  test::ExpectJacobiansMatchCentralDifferences(PoseLineCost(s.observed, s.lines, All(30), kFx, kFy, kCx, kCy, 3.0, 2.0),
+                                               s.q, s.t);
 }
 
 TEST(PoseLineCost, RejectsBadIndicesScaleAndWeight) {

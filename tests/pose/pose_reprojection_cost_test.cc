@@ -12,12 +12,13 @@
 
 #include "core/error.h"
 #include "core/pose.h"
+#include "pose/pose_cost_check.h"
 #include "pose/reprojection_error.h"
 
 namespace dynvo {
 namespace {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using test::RowMajor;
 
 constexpr double kFx = 525, kFy = 520, kCx = 319.5, kCy = 239.5;
 
@@ -44,12 +45,7 @@ Scene MakeScene(unsigned seed, int n) {
     const double error_px = i % 2 == 0 ? 1.5 * std::abs(u(rng)) : 14.0 + 6.0 * u(rng);
     s.observed.push_back(pixel + error_px * Eigen::Vector2d(u(rng), u(rng)).normalized());
   }
-  const Eigen::Quaterniond quat = PoseQuaternion(s.camera_from_world);
-  s.q[0] = quat.x();
-  s.q[1] = quat.y();
-  s.q[2] = quat.z();
-  s.q[3] = quat.w();
-  for (int k = 0; k < 3; ++k) s.t[k] = s.camera_from_world.translation()[k];
+  test::ToPoseParameters(s.camera_from_world, s.q, s.t);
   return s;
 }
 
@@ -87,46 +83,13 @@ TEST(PoseReprojectionCost, SquaredResidualsAreTheHuberLossOfTheReprojectionError
 // tangent directions of the pose (quaternion manifold, translation), on both sides of the
 // Huber scale.
 TEST(PoseReprojectionCost, JacobiansMatchCentralDifferences) {
-  const ceres::EigenQuaternionManifold manifold;
   for (unsigned seed : {3u, 5u, 8u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
     const Scene s = MakeScene(seed, 30);
     std::vector<int> use(30);
     for (int i = 0; i < 30; ++i) use[i] = i;
-    const PoseReprojectionCost cost(s.observed, s.points, use, kFx, kFy, kCx, kCy, 4.0);
-    const int m = cost.num_residuals();
-    RowMajor jq(m, 4), jt(m, 3);
-    Eigen::VectorXd r(m);
-    const double* parameters[2] = {s.q, s.t};
-    double* jacobians[2] = {jq.data(), jt.data()};
-    ASSERT_TRUE(cost.Evaluate(parameters, r.data(), jacobians));
-    RowMajor plus(4, 3);
-    ASSERT_TRUE(manifold.PlusJacobian(s.q, plus.data()));
-    RowMajor analytic(m, 6);
-    analytic << jq * plus, jt;
-
-    const double h = 1e-6;
-    for (int d = 0; d < 6; ++d) {
-      Eigen::VectorXd side[2];
-      for (int sign = 0; sign < 2; ++sign) {
-        double q[4], t[3] = {s.t[0], s.t[1], s.t[2]};
-        const double step = sign == 0 ? h : -h;
-        if (d < 3) {
-          double delta[3] = {0, 0, 0};
-          delta[d] = step;
-          ASSERT_TRUE(manifold.Plus(s.q, delta, q));
-        } else {
-          std::copy(s.q, s.q + 4, q);
-          t[d - 3] += step;
-        }
-        const double* moved[2] = {q, t};
-        side[sign].resize(m);
-        ASSERT_TRUE(cost.Evaluate(moved, side[sign].data(), nullptr));
-      }
-      const Eigen::VectorXd numeric = (side[0] - side[1]) / (2.0 * h);
-      for (int row = 0; row < m; ++row)
-        EXPECT_NEAR(analytic(row, d), numeric(row), 1e-5 * (1.0 + std::abs(numeric(row))))
-            << "seed " << seed << " row " << row << " direction " << d;
-    }
+    test::ExpectJacobiansMatchCentralDifferences(
+        PoseReprojectionCost(s.observed, s.points, use, kFx, kFy, kCx, kCy, 4.0), s.q, s.t);
   }
 }
 

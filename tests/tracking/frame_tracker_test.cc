@@ -68,8 +68,9 @@ class TrackerWithMapper {
   TrackerWithMapper(const Camera& camera, const TrackerOptions& options)
       : tracker_(camera, options), mapper_(camera, SolvedBeforeTheNextFrame()) {}
 
-  TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr) {
-    TrackingResult result = tracker_.Track(features, stamp, masked);
+  TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr,
+                       const FrameLines* lines = nullptr) {
+    TrackingResult result = tracker_.Track(features, stamp, masked, lines);
     const bool tracked_keyframe = result.keyframe_inserted && result.state == TrackingState::kTracking;
     const MappingPacket mapping = mapper_.Process(0, tracked_keyframe, tracker_.mutable_map());
     last_ba_ms_ = mapping.ms;
@@ -617,6 +618,66 @@ TEST(FrameTracker, FastRotationKeyframeKeepsDepthOutOfBundleAdjustment) {
       checked = true;
     }
     EXPECT_TRUE(checked) << deg_per_frame << " deg/frame: no keyframe after the second frame";
+  }
+}
+
+// A wall 5 m ahead of the world origin with a grid of edges on it (horizontal and vertical),
+// seen by a camera turning about its vertical axis: the frame's lines and its depth image.
+FrameLines WallLines(const Camera& camera, const Pose& camera_from_world) {
+  FrameLines lines;
+  lines.image_size = cv::Size(camera.width, camera.height);
+  const Eigen::Vector3d normal_world(0, 0, 1);  // the wall z = 5 in the world
+  const Eigen::Vector3d normal = camera_from_world.linear() * normal_world;
+  const double distance = 5.0 + normal.dot(camera_from_world.translation());  // n . X = d in the camera
+  lines.depth.create(camera.height, camera.width, CV_32FC1);
+  for (int v = 0; v < camera.height; ++v)
+    for (int u = 0; u < camera.width; ++u) {
+      const Eigen::Vector3d ray((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0);
+      lines.depth.at<float>(v, u) = static_cast<float>(distance / normal.dot(ray));
+    }
+  for (int k = -3; k <= 3; ++k) {
+    const double c = 0.5 * k;
+    for (const Line3d& edge : {Line3d{{c - 0.2, c * 0.4, 5.0}, {c + 0.2, c * 0.4 + 0.05, 5.0}},  // near horizontal
+                               Line3d{{c, -1.0, 5.0}, {c + 0.05, -0.4, 5.0}}}) {                 // near vertical
+      const Eigen::Vector3d a = camera_from_world * edge.start, b = camera_from_world * edge.end;
+      const LineSegment seen{camera.Project(a), camera.Project(b)};
+      if (!camera.InImage(seen.start, 2.0) || !camera.InImage(seen.end, 2.0)) continue;
+      lines.detected.push_back(seen);
+      lines.segments.push_back(seen);
+    }
+  }
+  return lines;
+}
+
+// A camera turning at 15 deg/s matches its lines to the keyframes' and refines the pose with
+// them; at 60 deg/s (faster than tracking.lines_max_rotation_deg_s, 30) its lines stay out of
+// the pose and of the map.
+TEST(FrameTracker, LinesJoinThePoseUnlessTheCameraTurnsTooFast) {
+  const test::SyntheticWorld world = RoomWorld();
+  for (const double deg_per_frame : {0.5, 2.0}) {
+    std::mt19937 rng(5);
+    TrackerOptions options;
+    options.keyframes.max_frames_between = 3;
+    TrackerWithMapper tracker(world.camera, options);
+    int matched = 0, inliers = 0, added_after_first = 0;
+    for (int i = 0; i < 8; ++i) {
+      const Pose world_from_camera = PoseFromAxisAngle({0.0, deg_per_frame * i / kRadToDeg, 0.0}, {0, 0, 0});
+      const FrameFeatures f = test::Render(world, world_from_camera.inverse(), {}, rng);
+      const FrameLines lines = WallLines(world.camera, world_from_camera.inverse());
+      ASSERT_GE(lines.size(), 8u);
+      const TrackingResult r = tracker.Track(f, i / kFrameRate, nullptr, &lines);
+      ASSERT_NE(r.state, TrackingState::kLost) << r.note;
+      matched += r.lines_matched;
+      inliers += r.line_inliers;
+      if (i > 0) added_after_first += r.lines_added;
+    }
+    if (deg_per_frame * kFrameRate > options.lines_max_rotation_deg_s) {
+      EXPECT_EQ(matched, 0) << deg_per_frame;
+      EXPECT_EQ(added_after_first, 0) << deg_per_frame;
+    } else {
+      EXPECT_GE(matched, 7 * 8) << deg_per_frame;  // every line of every frame after the first
+      EXPECT_EQ(inliers, matched) << deg_per_frame;
+    }
   }
 }
 
