@@ -28,7 +28,10 @@ int main(int argc, char** argv) {
                  "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
                  "motion blur, depth seen a few ms before colour, exposure drift, 28 ms rolling shutter)")
       ->capture_default_str();
-  app.add_option("--camera-path", camera_path, "static|xyz|halfsphere|rpy|rpy_fast")->capture_default_str();
+  app.add_option(
+         "--camera-path", camera_path,
+         "static|xyz|halfsphere|rpy|rpy_fast|loop (a full turn in 15 s, back at the start: 450 frames at 30 Hz)")
+      ->capture_default_str();
   app.add_option("--frames", frames, "number of RGB-D frames")->capture_default_str();
   app.add_option("--fps", fps, "frames per second (<= 60)")->capture_default_str();
   app.add_option("--width", width, "image width in pixels")->capture_default_str();

@@ -8,6 +8,7 @@ namespace dynvo {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kLoopSeconds = 15.0;  // one turn of CameraPathPreset::kLoop
 double Deg(double d) { return d * kPi / 180.0; }
 double Wave(double seconds, double period, double phase = 0.0) {
   return std::sin(2.0 * kPi * seconds / period + phase);
@@ -48,7 +49,8 @@ CameraPathPreset ParseCameraPathPreset(const std::string& name, const std::strin
   if (name == "halfsphere") return CameraPathPreset::kHalfsphere;
   if (name == "rpy") return CameraPathPreset::kRpy;
   if (name == "rpy_fast") return CameraPathPreset::kRpyFast;
-  throw InputError(key + " must be one of static, xyz, halfsphere, rpy, rpy_fast, got '" + name + "'");
+  if (name == "loop") return CameraPathPreset::kLoop;
+  throw InputError(key + " must be one of static, xyz, halfsphere, rpy, rpy_fast, loop, got '" + name + "'");
 }
 
 std::string CameraPathPresetName(CameraPathPreset preset) {
@@ -63,6 +65,8 @@ std::string CameraPathPresetName(CameraPathPreset preset) {
       return "rpy";
     case CameraPathPreset::kRpyFast:
       return "rpy_fast";
+    case CameraPathPreset::kLoop:
+      return "loop";
   }
   return "static";
 }
@@ -104,6 +108,17 @@ Pose CameraPathPose(CameraPathPreset preset, double s) {
       p.linear() = start.linear() * turn;
       break;
     }
+    case CameraPathPreset::kLoop: {
+      // Yaw about the world's vertical at a constant rate; the optical centre 0.3 m out from the
+      // circle's centre along the view, which starts 0.8 m in front of the start position.
+      const double yaw = 2.0 * kPi * s / kLoopSeconds;
+      const Eigen::Vector3d forward(-std::sin(yaw), std::cos(yaw), 0.0);
+      const Eigen::Vector3d centre(0.0, 0.5, 1.4);
+      p.translation() = centre + 0.3 * forward + Eigen::Vector3d(0.0, 0.0, 0.02 * std::sin(3.0 * yaw));
+      p.linear() = LookRotation(std::cos(Deg(12)) * forward - std::sin(Deg(12)) * Eigen::Vector3d::UnitZ()) *
+                   CameraRpy(Deg(2) * std::sin(2.0 * yaw), Deg(2) * std::sin(5.0 * yaw), 0);
+      break;
+    }
     case CameraPathPreset::kHalfsphere: {
       // Orbit of radius 1.1 m around a point 1.1 m in front of the start position.
       const double radius = 1.1;
@@ -119,5 +134,7 @@ Pose CameraPathPose(CameraPathPreset preset, double s) {
   }
   return p;
 }
+
+double CameraPathLoopSeconds(CameraPathPreset preset) { return preset == CameraPathPreset::kLoop ? kLoopSeconds : 0.0; }
 
 }  // namespace dynvo

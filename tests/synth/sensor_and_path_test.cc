@@ -131,6 +131,26 @@ TEST(CameraPath, RpyFastTurnsLikeTheStartOfFr1Rpy) {
   EXPECT_EQ(CameraPathPresetName(CameraPathPreset::kRpyFast), "rpy_fast");
 }
 
+TEST(CameraPath, LoopTurnsOnceAndComesBackToItsStart) {
+  const CameraPathPreset loop = ParseCameraPathPreset("loop", "k");
+  EXPECT_EQ(CameraPathPresetName(loop), "loop");
+  const double period = CameraPathLoopSeconds(loop);
+  ASSERT_GT(period, 0.0);
+  EXPECT_EQ(CameraPathLoopSeconds(CameraPathPreset::kHalfsphere), 0.0);
+  const Pose start = CameraPathPose(loop, 0.0);
+  const Pose back = CameraPathPose(loop, period);
+  EXPECT_LT((back.translation() - start.translation()).norm(), 1e-9);
+  EXPECT_LT(RotationAngle(Pose(start.inverse() * back)), 1e-9);
+  // Half-way it looks the other way from the far side of its circle (0.6 m across).
+  const Pose half = CameraPathPose(loop, period / 2.0);
+  EXPECT_NEAR((half.translation() - start.translation()).norm(), 0.6, 0.05);
+  EXPECT_NEAR(RotationAngle(Pose(start.inverse() * half)) / kDeg, 180.0, 10.0);
+  double median, max;
+  RotationRates(loop, &median, &max);
+  EXPECT_NEAR(median, 24.0, 3.0);
+  EXPECT_LT(max, 30);
+}
+
 TEST(MovingObject, PeopleArePersonSizedAndWalkAtTheirSpeed) {
   const std::vector<MovingPerson> people = MakeScenarioPeople(Scenario::kWalkingAcross, 1);
   ASSERT_EQ(people.size(), 1u);
