@@ -14,6 +14,26 @@
 #include "synth/tum_writer.h"
 #include "tool_main.h"
 
+namespace {
+
+// The --intrinsics camera scaled to width x height, then the explicit overrides.
+dynvo::Camera ScaledCamera(const std::string& intrinsics, int width, int height, const std::optional<double>& fx,
+                           const std::optional<double>& fy, const std::optional<double>& cx,
+                           const std::optional<double>& cy) {
+  dynvo::Camera camera = dynvo::TumIntrinsics(intrinsics, "--intrinsics");
+  camera.distortion = {0, 0, 0, 0, 0};
+  const double sx = width / 640.0, sy = height / 480.0;
+  camera.fx = fx ? *fx : camera.fx * sx;
+  camera.fy = fy ? *fy : camera.fy * sy;
+  camera.cx = cx ? *cx : (camera.cx + 0.5) * sx - 0.5;
+  camera.cy = cy ? *cy : (camera.cy + 0.5) * sy - 0.5;
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const char* prog = "dynvo-synth";
   CLI::App app{"Generate a synthetic dynamic RGB-D sequence (TUM layout, ground-truth poses and masks)"};
@@ -22,15 +42,13 @@ int main(int argc, char** argv) {
   double fps = 30;
   std::optional<double> fx, fy, cx, cy;
   unsigned seed = 1;
-  bool motion_blur = false, kinect_sensor = false, plain_room = false, force = false;
+  bool motion_blur = false, kinect_sensor = false, plain_room = false, repeated_walls = false, force = false;
   app.add_option("--scenario", scenario,
                  "none|tum_walking|tum_toward|tum_away|tum_sitting|walking_across|"
                  "walking_toward|two_crossing|sitting_sway (tum_: articulated photo people, "
                  "motion blur, depth seen a few ms before colour, exposure drift, 28 ms rolling shutter)")
       ->capture_default_str();
-  app.add_option(
-         "--camera-path", camera_path,
-         "static|xyz|halfsphere|rpy|rpy_fast|loop (a full turn in 15 s, back at the start: 450 frames at 30 Hz)")
+  app.add_option("--camera-path", camera_path, "static|xyz|halfsphere|rpy|rpy_fast|loop (one turn in 15 s)")
       ->capture_default_str();
   app.add_option("--frames", frames, "number of RGB-D frames")->capture_default_str();
   app.add_option("--fps", fps, "frames per second (<= 60)")->capture_default_str();
@@ -51,6 +69,8 @@ int main(int argc, char** argv) {
                "before colour, exposure drift, 28 ms rolling shutter; the static twin of a tum_* sequence");
   app.add_flag("--plain-room", plain_room,
                "walls, floor and furniture in plain paint: low texture, the edges of the room and its furniture");
+  app.add_flag("--repeated-walls", repeated_walls,
+               "walls papered with one 1.6 m panel over and over: any stretch of wall looks like any other");
   app.add_option("--out", out, "output folder (TUM layout)")->required();
   app.add_flag("--force", force, "replace the generated files of an existing non-empty --out");
   return dynvo::RunToolMain(prog, app, argc, argv, [&] {
@@ -61,6 +81,7 @@ int main(int argc, char** argv) {
     options.fps = fps;
     options.seed = seed;
     options.room.plain = plain_room;
+    options.room.repeated_walls = repeated_walls;
     const bool kinect = kinect_sensor || dynvo::IsTumScenario(options.scenario);
     options.motion_blur = motion_blur || kinect;
     options.kinect_timing = kinect;
@@ -70,20 +91,7 @@ int main(int argc, char** argv) {
     // the rest being vertical blanking; 28 ms is the readout Kerl et al. (ICCV 2015) simulate
     // for their rolling-shutter RGB-D sequences. The same share (84%) of the frame time above 30 Hz.
     if (kinect && fps > 0) options.rolling_shutter_readout_s = std::min(0.028, 0.84 / fps);
-    dynvo::Camera camera = dynvo::TumIntrinsics(intrinsics, "--intrinsics");
-    camera.distortion = {0, 0, 0, 0, 0};
-    const double sx = width / 640.0, sy = height / 480.0;
-    camera.fx *= sx;
-    camera.cx = (camera.cx + 0.5) * sx - 0.5;
-    camera.fy *= sy;
-    camera.cy = (camera.cy + 0.5) * sy - 0.5;
-    camera.width = width;
-    camera.height = height;
-    if (fx) camera.fx = *fx;
-    if (fy) camera.fy = *fy;
-    if (cx) camera.cx = *cx;
-    if (cy) camera.cy = *cy;
-    options.camera = camera;
+    options.camera = ScaledCamera(intrinsics, width, height, fx, fy, cx, cy);
     options.Check();
     dynvo::PrepareOutputFolder(out, force);
     const auto start = std::chrono::steady_clock::now();

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", dynvo::VersionLine("dynvo-cli"));
 
   dynvo::RunRequest request;
-  std::string debug_frames;
+  std::string debug_frames, mode = "vo";
   CLI::App* run = app.add_subcommand("run", "run the odometry on a TUM RGB-D sequence folder");
   run->add_option("--dataset", request.dataset, "TUM sequence folder (rgb.txt, depth.txt, ...)")->required();
   run->add_option("--config", request.config_path,
@@ -80,6 +80,11 @@ int main(int argc, char** argv) {
   run->add_option("--out", request.out_dir, "output folder (created when missing)")->required();
   run->add_option("--set", request.overrides, "override one config key: key=value (repeatable)")
       ->allow_extra_args(false);
+  run->add_option("--mode", mode,
+                  "vo: odometry; slam: loops closed (trajectory.txt corrected at the end, "
+                  "trajectory_online.txt as estimated, keyframes.txt, loops.csv)")
+      ->check(CLI::IsMember({"vo", "slam"}))
+      ->capture_default_str();
   run->add_flag("--force", request.force, "overwrite the outputs of an earlier run in --out");
   run->add_flag("--quiet", request.quiet, "no progress lines on stderr");
   run->add_option("--threads", request.threads,
@@ -106,6 +111,7 @@ int main(int argc, char** argv) {
       PrintConfigKeys(markdown);
       return 0;
     }
+    request.slam = mode == "slam";
     if (!debug_frames.empty()) request.debug_frames = ParseFrameList(debug_frames);
     const dynvo::StopSignals signals;
     request.stop_requested = [&signals] { return signals.received() != 0; };

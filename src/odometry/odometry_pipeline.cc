@@ -55,14 +55,16 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
 }  // namespace
 
 OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area,
-                                   Executor* executor)
+                                   Executor* executor, PipelineMode mode)
     : own_executor_(executor ? nullptr : std::make_unique<Executor>(0)),
       executor_(executor ? *executor : *own_executor_),
       mask_source_(MakeMaskSource(config, image_area, executor_)),
       refinements_(MakeRefinements(camera, config, executor_, &notices_)),
       features_(camera, config.features, image_area, executor_),
       tracker_(camera, config.tracking),
-      mapper_(camera, config.local_ba, &executor_) {}
+      mapper_(camera, config.local_ba, &executor_),
+      loop_closer_(mode == PipelineMode::kSlam ? std::make_unique<LoopCloser>(camera, LoopClosingOptions(), &executor_)
+                                               : nullptr) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
   const auto start = SteadyClock::now();
@@ -90,7 +92,11 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   const bool tracked_keyframe = out.tracking.keyframe_inserted && out.tracking.state == TrackingState::kTracking;
   out.mapping = mapper_.Process(frame.index, tracked_keyframe, tracker_.mutable_map());
   if (out.mapping.status == MappingStatus::kAdjusted) AdoptRefinedMap(frame.index, out);
-  // 5. What the refinements carry into the next frame.
+  // 5. slam mode: keyframes from a tracked pose go to place recognition, beside tracking.
+  if (loop_closer_)
+    loop_closer_->Observe(frame.index, frame.stamp, out.tracking.world_from_camera, tracked_keyframe,
+                          out.features.split.kept, frame.depth);
+  // 6. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)
     refinement->Observe(frame, out.tracking, tracker_.map());
@@ -98,6 +104,11 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   out.processing_ms = MillisecondsSince(start);
   processed.record = MakeFrameRecord(frame, out);
   return processed;
+}
+
+std::optional<LoopClosingResult> OdometryPipeline::FinishLoops() {
+  if (!loop_closer_) return std::nullopt;
+  return loop_closer_->Finish();
 }
 
 void OdometryPipeline::AdoptRefinedMap(size_t frame, FrameOutput& out) {

@@ -6,6 +6,7 @@
 // depend on frame t's state (the next frame's features and mask) runs ahead on the executor.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "core/executor.h"
 #include "core/image_area.h"
 #include "dataset/tum_dataset.h"
+#include "loop/loop_closer.h"
 #include "mapping/local_mapper.h"
 #include "odometry/frame_record.h"
 #include "odometry/odometry_config.h"
@@ -27,6 +29,9 @@
 namespace dynvo {
 
 // One processed frame: its timing.csv row and what each stage produced (for observers).
+// vo: odometry only; slam: the loop closer takes the keyframes too (loop/loop_closer.h).
+enum class PipelineMode { kOdometry, kSlam };
+
 struct ProcessedFrame {
   FrameRecord record;
   FrameOutput stages;
@@ -39,7 +44,7 @@ class OdometryPipeline {
   // all). The config must have passed Check(). Concurrent work runs on `executor` (which must
   // outlive the pipeline); without one, everything runs in order on the calling thread.
   OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area = {},
-                   Executor* executor = nullptr);
+                   Executor* executor = nullptr, PipelineMode mode = PipelineMode::kOdometry);
 
   // Processes frame t (pose always set). `next` is frame t+1 when loaded (null at the end): the
   // triplet's backward detection needs it, and its features and mask are started ahead on the
@@ -51,6 +56,10 @@ class OdometryPipeline {
 
   // True when Process wants frame t's ground-truth mask (mask source "ground_truth").
   bool NeedsTruthMask() const { return mask_source_->NeedsTruthMask(); }
+  // slam mode: waits for the loop closer's searches, closes the loops found and returns the
+  // corrected trajectory of the frames processed. Call once, after the last frame. Nothing
+  // (nullopt) in odometry mode.
+  std::optional<LoopClosingResult> FinishLoops();
   // What the pipeline left out of the config and why (e.g. a detector model not found), once.
   const std::vector<std::string>& notices() const { return notices_; }
 
@@ -66,7 +75,8 @@ class OdometryPipeline {
   FeatureStage features_;
   FrameTracker tracker_;
   LocalMapper mapper_;
-  cv::Mat last_mask_;  // frame t-1's final mask
+  std::unique_ptr<LoopCloser> loop_closer_;  // slam mode
+  cv::Mat last_mask_;                        // frame t-1's final mask
 };
 
 // The timing.csv row of a processed frame.

@@ -17,6 +17,7 @@
 #include "dataset/trajectory_io.h"
 #include "odometry/debug_panels_writer.h"
 #include "odometry/frame_loader.h"
+#include "odometry/loop_outputs.h"
 #include "odometry/odometry_pipeline.h"
 #include "odometry/progress_meter.h"
 #include "odometry/timing_csv.h"
@@ -26,12 +27,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json"};
+constexpr const char* kOutputs[] = {"trajectory.txt",        "timing.csv",    "run.json",
+                                    "trajectory_online.txt", "keyframes.txt", "loops.csv"};
 
 // With --force, the earlier run's outputs go first, so that none of them outlives it.
 void RemoveEarlierRun(const fs::path& dir) {
   std::error_code ec;
-  for (const std::string name : {"trajectory.txt", "timing.csv", "run.json", "run.json.tmp", "debug"}) {
+  for (const std::string name : {"trajectory.txt", "timing.csv", "run.json", "run.json.tmp", "debug",
+                                 "trajectory_online.txt", "keyframes.txt", "loops.csv"}) {
     fs::remove_all(dir / name, ec);
     if (ec) throw InputError((dir / name).string() + ": cannot remove the earlier run's output: " + ec.message());
   }
@@ -149,7 +152,12 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
   report["config_file"] = request.config_path;
   report["overrides"] = request.overrides;
   report["config"] = OdometryConfigToJson(config);
+  report["mode"] = request.slam ? "slam" : "vo";
   report["outputs"] = {{"trajectory", (out / "trajectory.txt").string()}, {"timing", (out / "timing.csv").string()}};
+  if (request.slam)
+    report["outputs"].update({{"trajectory_online", (out / "trajectory_online.txt").string()},
+                              {"keyframes", (out / "keyframes.txt").string()},
+                              {"loops", (out / "loops.csv").string()}});
 
   return report;
 }
@@ -249,6 +257,20 @@ RunEnd ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFrame&,
   return {};
 }
 
+// slam mode, after the last frame: the loops closed, their outputs written and summarised in
+// run.json. A failure here fails the run (what the frames produced is kept).
+void FinishLoops(OdometryPipeline* pipeline, const std::string& out_dir, nlohmann::json* report, RunEnd* end) {
+  try {
+    const std::optional<LoopClosingResult> loops = pipeline->FinishLoops();
+    if (!loops) return;
+    WriteLoopOutputs(out_dir, *loops);
+    (*report)["loops"] = LoopsJson(*loops);
+  } catch (const std::exception& e) {
+    if (end->status == RunStatus::kFailed) return;  // the first failure first
+    *end = {RunStatus::kFailed, std::string("loop closing: ") + e.what()};
+  }
+}
+
 }  // namespace
 
 const char* ToString(RunStatus status) {
@@ -269,7 +291,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   if (request.threads < 0) throw InputError("--threads must be >= 1, got " + std::to_string(request.threads));
   const int threads = request.threads > 0 ? request.threads : Executor::DefaultThreads();
   Executor executor(threads - 1);  // the calling thread is the other one
-  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor);
+  OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor,
+                            request.slam ? PipelineMode::kSlam : PipelineMode::kOdometry);
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())
     throw InputError("mask_source \"ground_truth\": " + dataset.folder() +
                      " has no masks.txt; ground-truth masks come with generated sequences "
@@ -293,7 +316,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   FrameLoader loader(dataset, count, evaluate_masks, executor);
   const DebugPanelsWriter debug_panels((out / "debug").string(), debug_frames);
   TimingCsvWriter timing((out / "timing.csv").string());
-  AppendedFile trajectory((out / "trajectory.txt").string());
+  AppendedFile trajectory((out / (request.slam ? "trajectory_online.txt" : "trajectory.txt")).string());
   ProgressMeter progress(count, request.quiet);
   RunTally tally;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -310,8 +333,9 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     progress.Update(tally.processing.size());
   };
 
-  const RunEnd end = ProcessFrames(&loader, process, request.stop_requested, tally);
+  RunEnd end = ProcessFrames(&loader, process, request.stop_requested, tally);
   progress.Finish(tally.processing.size());
+  FinishLoops(&pipeline, request.out_dir, &report, &end);
 
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   AddRunResults(tally, wall_s, end, threads, evaluate_masks, &report);

@@ -19,6 +19,7 @@ struct RunRequest {
   std::vector<size_t> debug_frames;      // frames whose panels go to out_dir/debug/
   int threads = 0;                       // threads the run uses (0 = the machine's cores; 1 = all
                                          // work in order on the calling thread); same results
+  bool slam = false;                     // --mode slam: loops closed at the end (LoopCloser)
   std::function<bool()> stop_requested;  // polled before each frame; true ends the run after the
                                          // frame in hand, as "interrupted" (empty: never)
 };
@@ -28,7 +29,9 @@ enum class RunStatus { kCompleted, kFailed, kInterrupted };
 const char* ToString(RunStatus status);
 
 // Runs the odometry on every frame and writes into out_dir: trajectory.txt (TUM format, one
-// pose per frame at its RGB stamp), timing.csv (one row per frame) and run.json (config as
+// pose per frame at its RGB stamp; with `slam`, the loop-corrected poses written after the
+// last frame, with trajectory_online.txt the poses as estimated at the time, keyframes.txt
+// and loops.csv), timing.csv (one row per frame) and run.json (config as
 // used, dataset, counts, time summary, mask quality). Rows and poses are written as frames
 // finish, every write checked; run.json is written last, atomically. With `force`, an
 // earlier run's outputs are removed first. If a frame fails to load or a write fails, what

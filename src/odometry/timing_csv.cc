@@ -3,22 +3,12 @@
 #include <sstream>
 #include <string>
 
+#include "core/csv_text.h"
 #include "core/error.h"
 #include "core/number_text.h"
 
 namespace dynvo {
 namespace {
-
-// CSV field with quotes doubled, quoted when it holds a separator or a quote.
-std::string CsvText(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
-}
 
 std::string Fixed(double v, int decimals) { return FixedText(v, decimals); }
 

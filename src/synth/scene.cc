@@ -26,6 +26,8 @@ float LambertShade(const Eigen::Vector3d& normal) {
 
 namespace {
 
+constexpr double kWallpaperPanelM = 1.6;  // RoomOptions::repeated_walls
+
 int Texels(double metres, double texel) { return std::clamp(static_cast<int>(std::lround(metres / texel)), 8, 4096); }
 
 TexturedQuad Face(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v, TextureKind kind,
@@ -82,13 +84,26 @@ std::vector<TexturedQuad> MakeRoomScene(const RoomOptions& o, std::uint32_t seed
   const double t = o.texel_size_m;
   const auto kind = [&](TextureKind k) { return o.plain ? TextureKind::kPaint : k; };
   // Shell: walls seen from inside, texture rows downwards.
-  quads.push_back(
-      Face({x0, y1, h}, {o.width_m, 0, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 11, 0));  // front
-  quads.push_back(
-      Face({x1, y0, h}, {-o.width_m, 0, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 12, 0));             // back
-  quads.push_back(Face({x0, y0, h}, {0, o.depth_m, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 13, 0));  // left
-  quads.push_back(
-      Face({x1, y1, h}, {0, -o.depth_m, 0}, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 14, 0));  // right
+  const auto wall = [&](const Eigen::Vector3d& top_left, const Eigen::Vector3d& along, std::uint32_t wall_seed) {
+    if (!o.repeated_walls) {
+      quads.push_back(Face(top_left, along, {0, 0, -h}, kind(TextureKind::kWall), t, wall_seed, 0));
+      return;
+    }
+    // Panels of one size and seed have one texture; the remainder is a panel of its own.
+    const double length = along.norm();
+    const Eigen::Vector3d panel = along * (kWallpaperPanelM / length);
+    const int full = static_cast<int>(length / kWallpaperPanelM + 1e-9);
+    for (int i = 0; i < full; ++i)
+      quads.push_back(Face(top_left + i * panel, panel, {0, 0, -h}, kind(TextureKind::kWall), t, seed + 11, 0));
+    const double rest = length - full * kWallpaperPanelM;
+    if (rest > 1e-6)
+      quads.push_back(Face(top_left + full * panel, along * (rest / length), {0, 0, -h}, kind(TextureKind::kWall), t,
+                           seed + 17, 0));
+  };
+  wall({x0, y1, h}, {o.width_m, 0, 0}, seed + 11);   // front
+  wall({x1, y0, h}, {-o.width_m, 0, 0}, seed + 12);  // back
+  wall({x0, y0, h}, {0, o.depth_m, 0}, seed + 13);   // left
+  wall({x1, y1, h}, {0, -o.depth_m, 0}, seed + 14);  // right
   quads.push_back(Face({x0, y0, 0}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, kind(TextureKind::kFloor), t, seed + 15, 0));
   quads.push_back(
       Face({x0, y0, h}, {o.width_m, 0, 0}, {0, o.depth_m, 0}, kind(TextureKind::kWall), 2 * t, seed + 16, 0));

@@ -48,6 +48,8 @@ struct RoomOptions {
   int furniture = 10;           // number of extra boxes on floor and desks (0 or more)
   bool plain = false;           // every surface plain paint (TextureKind::kPaint): low texture, where
                                 // the edges of walls and furniture are what a tracker can hold on to
+  bool repeated_walls = false;  // the walls papered with one 1.6 m wide panel over and over: any
+                                // stretch of wall looks like any other (false loop candidates)
 
   // Throws InputError naming the key ("room.width_m must be > 2, got 1").
   void Check() const;

@@ -118,6 +118,32 @@ TEST_F(DynvoCliOutputs, ASignalFinishesTheFrameAndRunJsonSaysInterrupted) {
   EXPECT_NE(Text(err).find("interrupted after " + std::to_string(frames) + " frames"), std::string::npos) << Text(err);
 }
 
+TEST_F(DynvoCliOutputs, SlamModeWritesAPoseForEveryFrameAndItsLoops) {
+  const fs::path out = dir_->path() / "slam", err = dir_->path() / "slam.err";
+  ASSERT_EQ(Wait(StartRun(seq_, out, err, {"--mode", "slam", "--set", "run.max_frames=60"})), 0) << Text(err);
+  const nlohmann::json report = RunJson(out);
+  EXPECT_EQ(report["mode"], "slam");
+  EXPECT_EQ(Lines(out / "trajectory.txt"), 60u);
+  EXPECT_EQ(Lines(out / "trajectory_online.txt"), 60u);
+  EXPECT_EQ(Lines(out / "keyframes.txt"), report["loops"]["keyframes"].get<size_t>());
+  EXPECT_GE(report["loops"]["keyframes"].get<size_t>(), 2u);
+  EXPECT_EQ(Text(out / "loops.csv").substr(0, 25), "frame,candidate_frame,vot");
+  // 2 s of a camera that never comes back: no loop, so the trajectory stays as estimated.
+  EXPECT_EQ(report["loops"]["accepted"], 0);
+  EXPECT_EQ(report["loops"]["pose_graph"]["why_not"], "no loop");
+  EXPECT_EQ(Text(out / "trajectory.txt"), Text(out / "trajectory_online.txt"));
+  // An interrupted slam run still ends with the trajectory of the frames it processed.
+  const fs::path stopped = dir_->path() / "slam_stopped", stopped_err = dir_->path() / "slam_stopped.err";
+  const pid_t pid = StartRun(seq_, stopped, stopped_err, {"--mode", "slam"});
+  AwaitLines(stopped / "trajectory_online.txt", 5);
+  kill(pid, SIGINT);
+  EXPECT_EQ(Wait(pid), 128 + SIGINT) << Text(stopped_err);
+  const size_t frames = RunJson(stopped)["counts"]["frames"].get<size_t>();
+  EXPECT_EQ(Lines(stopped / "trajectory.txt"), frames);
+  // A vo run writes none of the slam outputs.
+  EXPECT_FALSE(fs::exists(dir_->path() / "interrupted" / "loops.csv"));
+}
+
 TEST_F(DynvoCliOutputs, ASecondSignalEndsTheRunAtOnce) {
   const fs::path out = dir_->path() / "twice", err = dir_->path() / "twice.err";
   const pid_t pid = StartRun(seq_, out, err);

@@ -68,6 +68,9 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
                      "unknown key 'dynamic_mask.nonsense'");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"), "features.num_features");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
+  const ToolOutcome bad_mode = RunTool(dir, "dynvo-cli", run + " --mode loops");
+  EXPECT_EQ(bad_mode.exit_code, 2) << "a usage error, as CLI11 reports them";
+  EXPECT_NE(bad_mode.err.find("--mode: loops not in {vo,slam}"), std::string::npos) << bad_mode.err;
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 99"), "beyond the last frame");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set mask_source=detector --set 'detector.model=\"\"'"),
                      "needs detector.model");

@@ -215,6 +215,27 @@ TEST(Renderer, ThePlainRoomHasFewCornersAndTheSameGeometry) {
   EXPECT_EQ(cv::countNonZero(depth[0] != depth[1]), 0);
 }
 
+// Repeated walls: every full panel of every wall carries the same texture, so stretches of
+// different walls look alike (false loop candidates); the usual walls all differ.
+TEST(Renderer, RepeatedWallsArePaperedWithOnePanel) {
+  const auto wall_textures = [](bool repeated) {
+    RoomOptions room;
+    room.repeated_walls = repeated;
+    std::vector<cv::Mat> textures;
+    for (const TexturedQuad& q : MakeRoomScene(room, 3))
+      if (std::abs(q.edge_v.z() + room.height_m) < 1e-9 && std::abs(q.edge_u.z()) < 1e-9 &&
+          std::abs(q.edge_u.norm() - (repeated ? 1.6 : q.edge_u.norm())) < 1e-9)
+        textures.push_back(q.texture->levels[0]);
+    return textures;
+  };
+  const std::vector<cv::Mat> panels = wall_textures(true);
+  ASSERT_EQ(panels.size(), 16u);  // 4 panels on each of the 6.4 m and 7.0 m walls
+  for (const cv::Mat& panel : panels) EXPECT_EQ(cv::norm(panel, panels[0], cv::NORM_INF), 0.0);
+  const std::vector<cv::Mat> walls = wall_textures(false);
+  ASSERT_EQ(walls.size(), 4u);
+  EXPECT_GT(cv::norm(walls[0].colRange(0, 300), walls[2].colRange(0, 300), cv::NORM_L1), 0.0);
+}
+
 TEST(Renderer, RenderRowsWritesOnlyItsRowsAndRejectsBadRanges) {
   const Camera camera = SmallCamera();
   const Renderer renderer(camera);

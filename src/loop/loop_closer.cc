@@ -1,0 +1,92 @@
+#include "loop/loop_closer.h"
+
+#include <utility>
+
+#include "core/error.h"
+
+namespace dynvo {
+
+void LoopClosingOptions::Check() const {
+  recognition.Check();
+  pose_graph.Check();
+  RequireOption(depth_reduction >= 1, "loop", "depth_reduction", ">= 1", depth_reduction);
+}
+
+LoopCloser::LoopCloser(const Camera& camera, const LoopClosingOptions& options, Executor* executor)
+    : camera_(camera),
+      options_(options),
+      executor_(*executor),
+      recognition_(std::make_shared<PlaceRecognition>(camera, options.recognition)),
+      candidates_(std::make_shared<std::vector<LoopCandidate>>()) {
+  options_.Check();
+}
+
+LoopCloser::~LoopCloser() {
+  if (last_search_ && last_search_->valid()) {
+    try {
+      last_search_->Get();
+    } catch (...) {  // the run already ended; a failed search has nothing left to report
+    }
+  }
+}
+
+void LoopCloser::Observe(size_t frame, double stamp, const Pose& world_from_camera, bool keyframe,
+                         const FrameFeatures& static_features, const cv::Mat& depth) {
+  if (keyframe) {
+    auto made = std::make_shared<const LoopKeyframe>(
+        MakeLoopKeyframe(keyframes_.size(), frame, stamp, world_from_camera, static_features, depth,
+                         options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
+    keyframes_.push_back(made);
+    // Each search waits for the one before: the database sees the keyframes in order, whatever
+    // thread runs them, so the loops found never depend on timing.
+    auto previous = std::move(last_search_);
+    auto recognition = recognition_;
+    auto candidates = candidates_;
+    last_search_ = std::make_shared<Task<void>>(executor_.Submit([previous, recognition, candidates, made] {
+      if (previous && previous->valid()) previous->Get();
+      for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
+    }));
+  }
+  frames_.push_back({stamp, world_from_camera, static_cast<int>(keyframes_.size()) - 1});
+}
+
+LoopClosingResult LoopCloser::Finish() {
+  if (last_search_ && last_search_->valid()) last_search_->Get();
+  LoopClosingResult result;
+  result.candidates = *candidates_;
+  std::vector<PoseGraphNode> nodes;
+  std::vector<PoseGraphEdge> edges;
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    nodes.push_back({static_cast<int64_t>(k), keyframes_[k]->world_from_camera, k == 0});
+    if (k > 0)
+      edges.push_back({k - 1, k, keyframes_[k - 1]->world_from_camera.inverse() * keyframes_[k]->world_from_camera,
+                       PoseGraphEdgeKind::kOdometry});
+  }
+  for (const LoopCandidate& c : result.candidates) {
+    if (!c.accepted()) continue;
+    edges.push_back({c.candidate, c.keyframe, c.verification.query_from_candidate.inverse(), PoseGraphEdgeKind::kLoop});
+    ++result.loops;
+  }
+  if (result.loops > 0)
+    result.pose_graph = OptimizePoseGraph(options_.pose_graph, edges, &nodes);
+  else
+    result.pose_graph.failure = "no loop";
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    result.keyframe_frames.push_back(keyframes_[k]->frame);
+    result.keyframe_stamps.push_back(keyframes_[k]->stamp);
+    result.keyframe_poses.push_back(nodes[k].world_from_camera);  // unchanged unless the graph was solved
+  }
+  for (const FrameEntry& f : frames_) {
+    result.frame_stamps.push_back(f.stamp);
+    if (f.keyframe < 0) {
+      result.frame_poses.push_back(f.world_from_camera);
+      continue;
+    }
+    const LoopKeyframe& reference = *keyframes_[f.keyframe];
+    result.frame_poses.push_back(result.keyframe_poses[f.keyframe] * reference.world_from_camera.inverse() *
+                                 f.world_from_camera);
+  }
+  return result;
+}
+
+}  // namespace dynvo

@@ -1,0 +1,70 @@
+#include "odometry/loop_outputs.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include "core/csv_text.h"
+#include "core/number_text.h"
+#include "core/output_file.h"
+#include "dataset/trajectory_io.h"
+
+namespace dynvo {
+namespace {
+
+std::string LoopsCsv(const LoopClosingResult& result) {
+  std::ostringstream csv;
+  csv << "frame,candidate_frame,votes,consistent,verified,matches,inliers,cells,depth_agreement,correction_m,"
+         "correction_deg,tx,ty,tz,qx,qy,qz,qw,accepted,reason\n";
+  for (const LoopCandidate& c : result.candidates) {
+    const LoopVerification& v = c.verification;
+    csv << c.frame << ',' << c.candidate_frame << ',' << c.votes << ',' << c.consistent << ',' << c.verified << ',';
+    if (c.verified)
+      csv << v.matches << ',' << v.inliers << ',';
+    else
+      csv << ",,";
+    if (v.pose_found) {
+      const Eigen::Vector3d& t = v.query_from_candidate.translation();
+      const Eigen::Quaterniond q = PoseQuaternion(v.query_from_candidate);
+      csv << v.cells << ',' << ShortText(v.depth_agreement) << ',' << ShortText(v.correction_m) << ','
+          << ShortText(v.correction_deg);
+      for (double x : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) csv << ',' << ShortText(x);
+    } else {
+      csv << ",,,,,,,,,,";
+    }
+    csv << ',' << c.accepted() << ',' << CsvText(c.reason) << '\n';
+  }
+  return csv.str();
+}
+
+}  // namespace
+
+void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& result) {
+  const std::filesystem::path out(out_dir);
+  Trajectory frames, keyframes;
+  for (size_t i = 0; i < result.frame_poses.size(); ++i)
+    frames.push_back({result.frame_stamps[i], result.frame_poses[i]});
+  for (size_t k = 0; k < result.keyframe_poses.size(); ++k)
+    keyframes.push_back({result.keyframe_stamps[k], result.keyframe_poses[k]});
+  WriteFileAtomically((out / "trajectory.txt").string(), FormatTrajectory(frames));
+  WriteFileAtomically((out / "keyframes.txt").string(), FormatTrajectory(keyframes));
+  WriteFileAtomically((out / "loops.csv").string(), LoopsCsv(result));
+}
+
+nlohmann::json LoopsJson(const LoopClosingResult& result) {
+  int verified = 0;
+  for (const LoopCandidate& c : result.candidates) verified += c.verified;
+  nlohmann::json graph = {{"solved", result.pose_graph.ok}};
+  if (result.pose_graph.ok)
+    graph.update({{"iterations", result.pose_graph.iterations},
+                  {"initial_cost", result.pose_graph.initial_cost},
+                  {"final_cost", result.pose_graph.final_cost}});
+  else
+    graph["why_not"] = result.pose_graph.failure;
+  return {{"keyframes", result.keyframe_poses.size()},
+          {"candidates", result.candidates.size()},
+          {"verified", verified},
+          {"accepted", result.loops},
+          {"pose_graph", graph}};
+}
+
+}  // namespace dynvo

@@ -1,0 +1,155 @@
+#include "loop/loop_closer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "loop/box_room_world.h"
+
+namespace dynvo {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr int kKeyframes = 48;  // 9 degrees apart: 1.2 turns
+constexpr int kFramesPerKeyframe = 10;
+
+// Keyframe k's true pose: 0.8 m out from the room's centre, looking outward, turned 9 k degrees.
+Pose TrueKeyframe(int k) {
+  const double yaw = 9.0 * k * kDeg;
+  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0.0);
+  Pose pose = Pose::Identity();
+  pose.linear().col(2) = forward;
+  pose.linear().col(0) = forward.cross(Eigen::Vector3d::UnitZ());
+  pose.linear().col(1) = forward.cross(pose.linear().col(0));
+  pose.translation() = Eigen::Vector3d(0.0, 0.0, 1.5) + 0.8 * forward;
+  return pose;
+}
+
+// Tracking that turns 0.15 degrees too far and steps 2 mm aside at every keyframe: 7 degrees
+// and 8-10 cm of drift by the second turn.
+Pose DriftStep() { return PoseFromAxisAngle({0.0, 0.15 * kDeg, 0.0}, {0.002, 0.0, 0.0}); }
+
+class LoopCloserTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    room_ = new test::BoxRoom(test::MakeBoxRoom(6000, 9));
+    Pose tracked = TrueKeyframe(0);
+    for (int k = 0; k < kKeyframes; ++k) {
+      if (k > 0) tracked = tracked * TrueKeyframe(k - 1).inverse() * TrueKeyframe(k) * DriftStep();
+      tracked_.push_back(tracked);
+      features_.push_back(test::SeeRoom(*room_, TrueKeyframe(k), 12, 100 + k));
+      depths_.push_back(test::RoomDepth(*room_, TrueKeyframe(k)));
+    }
+  }
+  static void TearDownTestSuite() { delete room_; }
+
+  // Feeds the keyframes (and a frame after each, 0.1 m to the side of it) through a closer.
+  static LoopClosingResult Close(int workers) {
+    Executor executor(workers);
+    LoopCloser closer(room_->camera, {}, &executor);
+    for (int k = 0; k < kKeyframes; ++k) {
+      const size_t frame = static_cast<size_t>(k * kFramesPerKeyframe);
+      closer.Observe(frame, 0.1 * frame, tracked_[k], true, features_[k], depths_[k]);
+      closer.Observe(frame + 1, 0.1 * frame + 0.1, tracked_[k] * Beside(), false, FrameFeatures(), cv::Mat());
+    }
+    return closer.Finish();
+  }
+  static Pose Beside() { return PoseFromAxisAngle(Eigen::Vector3d::Zero(), {0.1, 0.0, 0.0}); }
+
+  static test::BoxRoom* room_;
+  static std::vector<Pose> tracked_;
+  static std::vector<FrameFeatures> features_;
+  static std::vector<cv::Mat> depths_;
+};
+
+test::BoxRoom* LoopCloserTest::room_ = nullptr;
+std::vector<Pose> LoopCloserTest::tracked_;
+std::vector<FrameFeatures> LoopCloserTest::features_;
+std::vector<cv::Mat> LoopCloserTest::depths_;
+
+double PositionError(const Pose& estimate, int k) {
+  return (estimate.translation() - TrueKeyframe(k).translation()).norm();
+}
+
+TEST_F(LoopCloserTest, TheRevisitClosesTheLoopAndEveryFrameFollows) {
+  const LoopClosingResult result = Close(1);
+  ASSERT_GT(result.loops, 0);
+  ASSERT_TRUE(result.pose_graph.ok) << result.pose_graph.failure;
+  // Every accepted loop joins a keyframe near the end of the turn to one of its start, with
+  // their true relative pose.
+  for (const LoopCandidate& c : result.candidates) {
+    if (!c.accepted()) continue;
+    EXPECT_GE(c.keyframe, 30u);
+    EXPECT_LE(c.candidate, 10u);
+    EXPECT_GE(c.consistent, 2);
+    const Pose truth =
+        TrueKeyframe(static_cast<int>(c.keyframe)).inverse() * TrueKeyframe(static_cast<int>(c.candidate));
+    const Pose& measured = c.verification.query_from_candidate;
+    EXPECT_LT((measured.translation() - truth.translation()).norm(), 0.02) << c.keyframe << " " << c.candidate;
+    EXPECT_LT(RotationAngle(Pose(truth.inverse() * measured)), 0.5 * kDeg) << c.keyframe << " " << c.candidate;
+  }
+  // The second turn's keyframes land much nearer the truth than tracking put them.
+  ASSERT_EQ(result.keyframe_poses.size(), static_cast<size_t>(kKeyframes));
+  for (int k = 40; k < kKeyframes; ++k) {
+    EXPECT_GT(PositionError(tracked_[k], k), 0.08) << k;
+    EXPECT_LT(PositionError(result.keyframe_poses[k], k), 0.02) << k;
+  }
+  // A pose for every frame observed; a frame keeps its offset from its keyframe.
+  ASSERT_EQ(result.frame_poses.size(), static_cast<size_t>(2 * kKeyframes));
+  for (int k = 0; k < kKeyframes; ++k)
+    EXPECT_TRUE(result.frame_poses[2 * k + 1].isApprox(result.keyframe_poses[k] * Beside(), 1e-9)) << k;
+}
+
+TEST_F(LoopCloserTest, ResultsDoNotDependOnTheThreads) {
+  const LoopClosingResult serial = Close(0), parallel = Close(2);
+  ASSERT_EQ(serial.candidates.size(), parallel.candidates.size());
+  for (size_t i = 0; i < serial.candidates.size(); ++i) {
+    EXPECT_EQ(serial.candidates[i].candidate, parallel.candidates[i].candidate);
+    EXPECT_EQ(serial.candidates[i].reason, parallel.candidates[i].reason);
+  }
+  for (size_t i = 0; i < serial.frame_poses.size(); ++i)
+    EXPECT_TRUE(serial.frame_poses[i].isApprox(parallel.frame_poses[i], 0.0)) << i;
+}
+
+TEST_F(LoopCloserTest, WithoutARevisitNothingMoves) {
+  Executor executor(1);
+  LoopCloser closer(room_->camera, {}, &executor);
+  for (int k = 0; k < 30; ++k)  // three quarters of a turn: never back
+    closer.Observe(static_cast<size_t>(k * kFramesPerKeyframe), 0.1 * k, tracked_[k], true, features_[k], depths_[k]);
+  const LoopClosingResult result = closer.Finish();
+  EXPECT_EQ(result.loops, 0);
+  EXPECT_FALSE(result.pose_graph.ok);
+  for (int k = 0; k < 30; ++k) EXPECT_TRUE(result.frame_poses[k].isApprox(tracked_[k], 1e-12));
+}
+
+TEST(PlaceRecognition, ALoneRevisitWaitsForConsistencyAndRecentKeyframesAreNoCandidates) {
+  const test::BoxRoom room = test::MakeBoxRoom(4000, 4);
+  PlaceRecognitionOptions options;
+  options.consistency = 2;
+  PlaceRecognition recognition(room.camera, options);
+  const Pose here = TrueKeyframe(0), there = TrueKeyframe(20);
+  const auto keyframe = [&](size_t number, size_t frame, const Pose& pose) {
+    return std::make_shared<const LoopKeyframe>(MakeLoopKeyframe(
+        number, frame, 0.0, pose, test::SeeRoom(room, pose, 12, number), test::RoomDepth(room, pose), 8, nullptr));
+  };
+  EXPECT_TRUE(recognition.Process(keyframe(0, 0, here)).empty());
+  // The same place 100 frames later: too recent to be a candidate.
+  EXPECT_TRUE(recognition.Process(keyframe(1, 100, here)).empty());
+  EXPECT_TRUE(recognition.Process(keyframe(2, 200, there)).empty());
+  // Back 300 frames later: a candidate, but alone; the next keyframe there confirms it.
+  std::vector<LoopCandidate> first = recognition.Process(keyframe(3, 300, here));
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first[0].consistent, 1);
+  EXPECT_FALSE(first[0].verified);
+  EXPECT_EQ(first[0].reason, "not yet consistent");
+  std::vector<LoopCandidate> second = recognition.Process(keyframe(4, 310, here));
+  ASSERT_FALSE(second.empty());
+  EXPECT_EQ(second[0].consistent, 2);
+  EXPECT_TRUE(second[0].accepted()) << second[0].reason;
+  EXPECT_LE(second[0].candidate, 1u);
+}
+
+}  // namespace
+}  // namespace dynvo
