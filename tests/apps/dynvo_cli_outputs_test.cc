@@ -132,6 +132,11 @@ TEST_F(DynvoCliOutputs, SlamModeWritesAPoseForEveryFrameAndItsLoops) {
   EXPECT_EQ(report["loops"]["accepted"], 0);
   EXPECT_EQ(report["loops"]["pose_graph"]["why_not"], "no loop");
   EXPECT_EQ(Text(out / "trajectory.txt"), Text(out / "trajectory_online.txt"));
+  // The loop closer never feeds back into tracking: the online poses are the vo mode's.
+  const fs::path vo = dir_->path() / "slam_vo", vo_err = dir_->path() / "slam_vo.err";
+  ASSERT_EQ(Wait(StartRun(seq_, vo, vo_err, {"--set", "run.max_frames=60"})), 0) << Text(vo_err);
+  EXPECT_EQ(Text(vo / "trajectory.txt"), Text(out / "trajectory_online.txt"));
+  EXPECT_EQ(RunJson(vo)["mode"], "vo");
   // An interrupted slam run still ends with the trajectory of the frames it processed.
   const fs::path stopped = dir_->path() / "slam_stopped", stopped_err = dir_->path() / "slam_stopped.err";
   const pid_t pid = StartRun(seq_, stopped, stopped_err, {"--mode", "slam"});
