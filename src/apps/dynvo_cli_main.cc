@@ -85,6 +85,8 @@ int main(int argc, char** argv) {
                   "trajectory_online.txt as estimated, keyframes.txt, loops.csv)")
       ->check(CLI::IsMember({"vo", "slam"}))
       ->capture_default_str();
+  run->add_flag("--map", request.map,
+                "with --mode slam: map.ply (coloured static points, people left out, voxel-filtered) and map_top.png");
   run->add_flag("--force", request.force, "overwrite the outputs of an earlier run in --out");
   run->add_flag("--quiet", request.quiet, "no progress lines on stderr");
   run->add_option("--threads", request.threads,

@@ -10,6 +10,7 @@ void LoopClosingOptions::Check() const {
   recognition.Check();
   pose_graph.Check();
   RequireOption(depth_reduction >= 1, "loop", "depth_reduction", ">= 1", depth_reduction);
+  map.Check();
 }
 
 LoopCloser::LoopCloser(const Camera& camera, const LoopClosingOptions& options, Executor* executor)
@@ -30,12 +31,15 @@ LoopCloser::~LoopCloser() {
   }
 }
 
-void LoopCloser::Observe(size_t frame, double stamp, const Pose& world_from_camera, bool keyframe,
-                         const FrameFeatures& static_features, const cv::Mat& depth) {
-  if (keyframe) {
-    auto made = std::make_shared<const LoopKeyframe>(
-        MakeLoopKeyframe(keyframes_.size(), frame, stamp, world_from_camera, static_features, depth,
-                         options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
+void LoopCloser::Observe(const LoopFrame& frame) {
+  if (frame.keyframe) {
+    if (frame.static_features == nullptr)
+      throw InputError("LoopCloser::Observe: keyframe " + std::to_string(frame.frame) + " without its features");
+    auto made = std::make_shared<const LoopKeyframe>(MakeLoopKeyframe(
+        keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features, frame.depth,
+        options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
+    if (options_.build_map)
+      map_samples_.push_back(SampleKeyframe(frame.bgr, frame.depth, frame.excluded, camera_, options_.map));
     keyframes_.push_back(made);
     // Each search waits for the one before: the database sees the keyframes in order, whatever
     // thread runs them, so the loops found never depend on timing.
@@ -47,7 +51,7 @@ void LoopCloser::Observe(size_t frame, double stamp, const Pose& world_from_came
       for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
     }));
   }
-  frames_.push_back({stamp, world_from_camera, static_cast<int>(keyframes_.size()) - 1});
+  frames_.push_back({frame.stamp, frame.world_from_camera, static_cast<int>(keyframes_.size()) - 1});
 }
 
 LoopClosingResult LoopCloser::Finish() {
@@ -76,6 +80,7 @@ LoopClosingResult LoopCloser::Finish() {
     result.keyframe_stamps.push_back(keyframes_[k]->stamp);
     result.keyframe_poses.push_back(nodes[k].world_from_camera);  // unchanged unless the graph was solved
   }
+  if (options_.build_map) result.map = BuildStaticMap(map_samples_, result.keyframe_poses, options_.map);
   for (const FrameEntry& f : frames_) {
     result.frame_stamps.push_back(f.stamp);
     if (f.keyframe < 0) {

@@ -14,6 +14,7 @@
 #include "loop/loop_keyframe.h"
 #include "loop/place_recognition.h"
 #include "loop/pose_graph.h"
+#include "loop/static_map.h"
 
 namespace dynvo {
 
@@ -21,6 +22,8 @@ struct LoopClosingOptions {
   PlaceRecognitionOptions recognition;
   PoseGraphOptions pose_graph;
   int depth_reduction = 8;  // a keyframe keeps its depth image this many times smaller (>= 1)
+  bool build_map = false;   // keep the keyframes' samples and build the static map (--map)
+  StaticMapOptions map;
   // Throws InputError naming the key when out of range.
   void Check() const;
 };
@@ -36,6 +39,20 @@ struct LoopClosingResult {
   // Every observed frame, in order: the corrected pose (the online one before the first keyframe).
   std::vector<double> frame_stamps;
   std::vector<Pose> frame_poses;  // world_from_camera
+  StaticMap map;                  // build_map: the static map placed by the corrected keyframes
+};
+
+// What the loop closer takes of one frame.
+struct LoopFrame {
+  size_t frame = 0;  // input frame index
+  double stamp = 0.0;
+  Pose world_from_camera = Pose::Identity();  // as tracked
+  bool keyframe = false;                      // a keyframe from a tracked pose
+  // Keyframes only:
+  const FrameFeatures* static_features = nullptr;  // the features off the dynamic mask
+  cv::Mat bgr;                                     // CV_8UC3 (build_map)
+  cv::Mat depth;                                   // CV_32FC1 metres
+  cv::Mat excluded;  // CV_8UC1, non-zero: never in the map (the dynamic mask, every person found)
 };
 
 class LoopCloser {
@@ -48,10 +65,12 @@ class LoopCloser {
   LoopCloser(const LoopCloser&) = delete;
   LoopCloser& operator=(const LoopCloser&) = delete;
 
-  // Records a frame's online pose. A keyframe (`keyframe`) also keeps its static features with
-  // depth and its depth image (CV_32FC1 metres), and its search for loops starts on the executor.
-  void Observe(size_t frame, double stamp, const Pose& world_from_camera, bool keyframe,
-               const FrameFeatures& static_features, const cv::Mat& depth);
+  // Records a frame's online pose. A keyframe also keeps its static features with depth and its
+  // reduced depth image, and its search for loops starts on the executor; with build_map, its
+  // map sample is taken. Throws InputError when a keyframe comes without its features.
+  void Observe(const LoopFrame& frame);
+
+  const LoopClosingOptions& options() const { return options_; }
 
   // Waits for the searches, closes the accepted loops and returns the corrected trajectory.
   // Call once, after the last frame.
@@ -69,6 +88,7 @@ class LoopCloser {
   Executor& executor_;
   std::vector<FrameEntry> frames_;
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
+  std::vector<KeyframeMapSample> map_samples_;  // build_map: one per keyframe
   // Owned by the searches once started: each search waits for the one before.
   std::shared_ptr<PlaceRecognition> recognition_;
   std::shared_ptr<std::vector<LoopCandidate>> candidates_;

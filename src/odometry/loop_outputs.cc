@@ -7,6 +7,7 @@
 #include "core/number_text.h"
 #include "core/output_file.h"
 #include "dataset/trajectory_io.h"
+#include "loop/static_map.h"
 
 namespace dynvo {
 namespace {
@@ -38,7 +39,7 @@ std::string LoopsCsv(const LoopClosingResult& result) {
 
 }  // namespace
 
-void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& result) {
+void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& result, bool with_map) {
   const std::filesystem::path out(out_dir);
   Trajectory frames, keyframes;
   for (size_t i = 0; i < result.frame_poses.size(); ++i)
@@ -48,9 +49,12 @@ void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& resul
   WriteFileAtomically((out / "trajectory.txt").string(), FormatTrajectory(frames));
   WriteFileAtomically((out / "keyframes.txt").string(), FormatTrajectory(keyframes));
   WriteFileAtomically((out / "loops.csv").string(), LoopsCsv(result));
+  if (!with_map) return;
+  WriteMapPly((out / "map.ply").string(), result.map);
+  WriteMapTopView((out / "map_top.png").string(), result.map);
 }
 
-nlohmann::json LoopsJson(const LoopClosingResult& result) {
+nlohmann::json LoopsJson(const LoopClosingResult& result, bool with_map) {
   int verified = 0;
   for (const LoopCandidate& c : result.candidates) verified += c.verified;
   nlohmann::json graph = {{"solved", result.pose_graph.ok}};
@@ -60,11 +64,13 @@ nlohmann::json LoopsJson(const LoopClosingResult& result) {
                   {"final_cost", result.pose_graph.final_cost}});
   else
     graph["why_not"] = result.pose_graph.failure;
-  return {{"keyframes", result.keyframe_poses.size()},
-          {"candidates", result.candidates.size()},
-          {"verified", verified},
-          {"accepted", result.loops},
-          {"pose_graph", graph}};
+  nlohmann::json loops = {{"keyframes", result.keyframe_poses.size()},
+                          {"candidates", result.candidates.size()},
+                          {"verified", verified},
+                          {"accepted", result.loops},
+                          {"pose_graph", graph}};
+  if (with_map) loops["map_points"] = result.map.points.size();
+  return loops;
 }
 
 }  // namespace dynvo

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "detection/person_mask.h"
 #include "detection/yolo_detector.h"
 #include "dynamic_mask/dynamic_mask_detector.h"
 #include "pipeline/depth_change_refinement.h"
@@ -52,10 +53,29 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
   return refinements;
 }
 
+// What the loop closer takes of a frame: for a keyframe, its static features and images, and
+// with the map the pixels it must leave out (the dynamic mask and every person found, moving or
+// still).
+LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool keyframe, bool with_map) {
+  LoopFrame loop;
+  loop.frame = frame.index;
+  loop.stamp = frame.stamp;
+  loop.world_from_camera = out.tracking.world_from_camera;
+  loop.keyframe = keyframe;
+  if (!keyframe) return loop;
+  loop.static_features = &out.features.split.kept;
+  loop.bgr = frame.bgr;
+  loop.depth = frame.depth;
+  if (!with_map) return loop;
+  loop.excluded = out.mask.mask.empty() ? cv::Mat::zeros(frame.depth.size(), CV_8UC1) : out.mask.mask.clone();
+  for (const Detection& person : out.mask.people) loop.excluded |= PersonMaskFromBox(frame.depth, person.box);
+  return loop;
+}
+
 }  // namespace
 
 OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area,
-                                   Executor* executor, PipelineMode mode)
+                                   Executor* executor, const LoopClosingOptions* loop_closing)
     : own_executor_(executor ? nullptr : std::make_unique<Executor>(0)),
       executor_(executor ? *executor : *own_executor_),
       mask_source_(MakeMaskSource(config, image_area, executor_)),
@@ -63,8 +83,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
       features_(camera, config.features, image_area, executor_),
       tracker_(camera, config.tracking),
       mapper_(camera, config.local_ba, &executor_),
-      loop_closer_(mode == PipelineMode::kSlam ? std::make_unique<LoopCloser>(camera, LoopClosingOptions(), &executor_)
-                                               : nullptr) {}
+      loop_closer_(loop_closing ? std::make_unique<LoopCloser>(camera, *loop_closing, &executor_) : nullptr) {}
 
 ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame* next, const cv::Mat& truth_mask) {
   const auto start = SteadyClock::now();
@@ -94,8 +113,7 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   if (out.mapping.status == MappingStatus::kAdjusted) AdoptRefinedMap(frame.index, out);
   // 5. slam mode: keyframes from a tracked pose go to place recognition, beside tracking.
   if (loop_closer_)
-    loop_closer_->Observe(frame.index, frame.stamp, out.tracking.world_from_camera, tracked_keyframe,
-                          out.features.split.kept, frame.depth);
+    loop_closer_->Observe(MakeLoopFrame(frame, out, tracked_keyframe, loop_closer_->options().build_map));
   // 6. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)

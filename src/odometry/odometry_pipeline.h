@@ -29,9 +29,6 @@
 namespace dynvo {
 
 // One processed frame: its timing.csv row and what each stage produced (for observers).
-// vo: odometry only; slam: the loop closer takes the keyframes too (loop/loop_closer.h).
-enum class PipelineMode { kOdometry, kSlam };
-
 struct ProcessedFrame {
   FrameRecord record;
   FrameOutput stages;
@@ -42,9 +39,10 @@ class OdometryPipeline {
   // `camera` is the camera of the images passed to Process (undistorted when the reader
   // undistorts); `image_area` the part of them with image data (TumDataset::image_area(); empty =
   // all). The config must have passed Check(). Concurrent work runs on `executor` (which must
-  // outlive the pipeline); without one, everything runs in order on the calling thread.
+  // outlive the pipeline); without one, everything runs in order on the calling thread. With
+  // `loop_closing` (slam mode), the loop closer takes the keyframes (loop/loop_closer.h).
   OdometryPipeline(const Camera& camera, const OdometryConfig& config, const ImageArea& image_area = {},
-                   Executor* executor = nullptr, PipelineMode mode = PipelineMode::kOdometry);
+                   Executor* executor = nullptr, const LoopClosingOptions* loop_closing = nullptr);
 
   // Processes frame t (pose always set). `next` is frame t+1 when loaded (null at the end): the
   // triplet's backward detection needs it, and its features and mask are started ahead on the

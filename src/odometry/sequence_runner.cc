@@ -15,6 +15,7 @@
 #include "core/json_file.h"
 #include "core/output_file.h"
 #include "dataset/trajectory_io.h"
+#include "loop/loop_closer.h"
 #include "odometry/debug_panels_writer.h"
 #include "odometry/frame_loader.h"
 #include "odometry/loop_outputs.h"
@@ -27,14 +28,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kOutputs[] = {"trajectory.txt",        "timing.csv",    "run.json",
-                                    "trajectory_online.txt", "keyframes.txt", "loops.csv"};
+constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json", "trajectory_online.txt",
+                                    "keyframes.txt",  "loops.csv",  "map.ply",  "map_top.png"};
 
 // With --force, the earlier run's outputs go first, so that none of them outlives it.
 void RemoveEarlierRun(const fs::path& dir) {
   std::error_code ec;
   for (const std::string name : {"trajectory.txt", "timing.csv", "run.json", "run.json.tmp", "debug",
-                                 "trajectory_online.txt", "keyframes.txt", "loops.csv"}) {
+                                 "trajectory_online.txt", "keyframes.txt", "loops.csv", "map.ply", "map_top.png"}) {
     fs::remove_all(dir / name, ec);
     if (ec) throw InputError((dir / name).string() + ": cannot remove the earlier run's output: " + ec.message());
   }
@@ -158,6 +159,8 @@ nlohmann::json RunHeader(const RunRequest& request, const OdometryConfig& config
     report["outputs"].update({{"trajectory_online", (out / "trajectory_online.txt").string()},
                               {"keyframes", (out / "keyframes.txt").string()},
                               {"loops", (out / "loops.csv").string()}});
+  if (request.map)
+    report["outputs"].update({{"map", (out / "map.ply").string()}, {"map_top", (out / "map_top.png").string()}});
 
   return report;
 }
@@ -259,12 +262,13 @@ RunEnd ProcessFrames(FrameLoader* loader, const std::function<void(LoadedFrame&,
 
 // slam mode, after the last frame: the loops closed, their outputs written and summarised in
 // run.json. A failure here fails the run (what the frames produced is kept).
-void FinishLoops(OdometryPipeline* pipeline, const std::string& out_dir, nlohmann::json* report, RunEnd* end) {
+void FinishLoops(OdometryPipeline* pipeline, const std::string& out_dir, bool with_map, nlohmann::json* report,
+                 RunEnd* end) {
   try {
     const std::optional<LoopClosingResult> loops = pipeline->FinishLoops();
     if (!loops) return;
-    WriteLoopOutputs(out_dir, *loops);
-    (*report)["loops"] = LoopsJson(*loops);
+    WriteLoopOutputs(out_dir, *loops, with_map);
+    (*report)["loops"] = LoopsJson(*loops, with_map);
   } catch (const std::exception& e) {
     if (end->status == RunStatus::kFailed) return;  // the first failure first
     *end = {RunStatus::kFailed, std::string("loop closing: ") + e.what()};
@@ -289,10 +293,13 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   const OdometryConfig config = LoadOdometryConfig(request.config_path, request.overrides);
   const TumDataset dataset(request.dataset, config.ReaderOptions());
   if (request.threads < 0) throw InputError("--threads must be >= 1, got " + std::to_string(request.threads));
+  if (request.map && !request.slam) throw InputError("--map needs --mode slam: the map is placed by the closed loops");
   const int threads = request.threads > 0 ? request.threads : Executor::DefaultThreads();
   Executor executor(threads - 1);  // the calling thread is the other one
+  LoopClosingOptions loop_closing;
+  loop_closing.build_map = request.map;
   OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor,
-                            request.slam ? PipelineMode::kSlam : PipelineMode::kOdometry);
+                            request.slam ? &loop_closing : nullptr);
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())
     throw InputError("mask_source \"ground_truth\": " + dataset.folder() +
                      " has no masks.txt; ground-truth masks come with generated sequences "
@@ -335,7 +342,7 @@ nlohmann::json RunOdometry(const RunRequest& request) {
 
   RunEnd end = ProcessFrames(&loader, process, request.stop_requested, tally);
   progress.Finish(tally.processing.size());
-  FinishLoops(&pipeline, request.out_dir, &report, &end);
+  FinishLoops(&pipeline, request.out_dir, request.map, &report, &end);
 
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   AddRunResults(tally, wall_s, end, threads, evaluate_masks, &report);

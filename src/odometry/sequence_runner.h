@@ -20,6 +20,7 @@ struct RunRequest {
   int threads = 0;                       // threads the run uses (0 = the machine's cores; 1 = all
                                          // work in order on the calling thread); same results
   bool slam = false;                     // --mode slam: loops closed at the end (LoopCloser)
+  bool map = false;                      // --map (slam only): map.ply and map_top.png
   std::function<bool()> stop_requested;  // polled before each frame; true ends the run after the
                                          // frame in hand, as "interrupted" (empty: never)
 };
@@ -31,7 +32,7 @@ const char* ToString(RunStatus status);
 // Runs the odometry on every frame and writes into out_dir: trajectory.txt (TUM format, one
 // pose per frame at its RGB stamp; with `slam`, the loop-corrected poses written after the
 // last frame, with trajectory_online.txt the poses as estimated at the time, keyframes.txt
-// and loops.csv), timing.csv (one row per frame) and run.json (config as
+// and loops.csv; with `map`, map.ply and map_top.png), timing.csv (one row per frame) and run.json (config as
 // used, dataset, counts, time summary, mask quality). Rows and poses are written as frames
 // finish, every write checked; run.json is written last, atomically. With `force`, an
 // earlier run's outputs are removed first. If a frame fails to load or a write fails, what

@@ -120,13 +120,17 @@ TEST_F(DynvoCliOutputs, ASignalFinishesTheFrameAndRunJsonSaysInterrupted) {
 
 TEST_F(DynvoCliOutputs, SlamModeWritesAPoseForEveryFrameAndItsLoops) {
   const fs::path out = dir_->path() / "slam", err = dir_->path() / "slam.err";
-  ASSERT_EQ(Wait(StartRun(seq_, out, err, {"--mode", "slam", "--set", "run.max_frames=60"})), 0) << Text(err);
+  ASSERT_EQ(Wait(StartRun(seq_, out, err, {"--mode", "slam", "--map", "--set", "run.max_frames=60"})), 0) << Text(err);
   const nlohmann::json report = RunJson(out);
   EXPECT_EQ(report["mode"], "slam");
   EXPECT_EQ(Lines(out / "trajectory.txt"), 60u);
   EXPECT_EQ(Lines(out / "trajectory_online.txt"), 60u);
   EXPECT_EQ(Lines(out / "keyframes.txt"), report["loops"]["keyframes"].get<size_t>());
   EXPECT_GE(report["loops"]["keyframes"].get<size_t>(), 2u);
+  EXPECT_GT(report["loops"]["map_points"].get<size_t>(), 1000u);
+  EXPECT_NE(Text(out / "map.ply").find("element vertex " + std::to_string(report["loops"]["map_points"].get<size_t>())),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "map_top.png"));
   EXPECT_EQ(Text(out / "loops.csv").substr(0, 25), "frame,candidate_frame,vot");
   // 2 s of a camera that never comes back: no loop, so the trajectory stays as estimated.
   EXPECT_EQ(report["loops"]["accepted"], 0);

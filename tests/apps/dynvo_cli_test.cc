@@ -68,6 +68,7 @@ TEST(DynvoCli, BadInputsGetOneClearError) {
                      "unknown key 'dynamic_mask.nonsense'");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --set features.num_features=lots"), "features.num_features");
   ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --debug-frames 3,x"), "--debug-frames");
+  ExpectOneLineError(RunTool(dir, "dynvo-cli", run + " --map"), "--map needs --mode slam");
   const ToolOutcome bad_mode = RunTool(dir, "dynvo-cli", run + " --mode loops");
   EXPECT_EQ(bad_mode.exit_code, 2) << "a usage error, as CLI11 reports them";
   EXPECT_NE(bad_mode.err.find("--mode: loops not in {vo,slam}"), std::string::npos) << bad_mode.err;

@@ -51,10 +51,25 @@ class LoopCloserTest : public ::testing::Test {
     LoopCloser closer(room_->camera, {}, &executor);
     for (int k = 0; k < kKeyframes; ++k) {
       const size_t frame = static_cast<size_t>(k * kFramesPerKeyframe);
-      closer.Observe(frame, 0.1 * frame, tracked_[k], true, features_[k], depths_[k]);
-      closer.Observe(frame + 1, 0.1 * frame + 0.1, tracked_[k] * Beside(), false, FrameFeatures(), cv::Mat());
+      closer.Observe(Keyframe(k, frame, tracked_[k]));
+      LoopFrame between;
+      between.frame = frame + 1;
+      between.stamp = 0.1 * frame + 0.1;
+      between.world_from_camera = tracked_[k] * Beside();
+      closer.Observe(between);
     }
     return closer.Finish();
+  }
+  // Keyframe k seen from its true pose, tracked at `tracked`.
+  static LoopFrame Keyframe(int k, size_t frame, const Pose& tracked) {
+    LoopFrame keyframe;
+    keyframe.frame = frame;
+    keyframe.stamp = 0.1 * frame;
+    keyframe.world_from_camera = tracked;
+    keyframe.keyframe = true;
+    keyframe.static_features = &features_[k];
+    keyframe.depth = depths_[k];
+    return keyframe;
   }
   static Pose Beside() { return PoseFromAxisAngle(Eigen::Vector3d::Zero(), {0.1, 0.0, 0.0}); }
 
@@ -117,7 +132,7 @@ TEST_F(LoopCloserTest, WithoutARevisitNothingMoves) {
   Executor executor(1);
   LoopCloser closer(room_->camera, {}, &executor);
   for (int k = 0; k < 30; ++k)  // three quarters of a turn: never back
-    closer.Observe(static_cast<size_t>(k * kFramesPerKeyframe), 0.1 * k, tracked_[k], true, features_[k], depths_[k]);
+    closer.Observe(Keyframe(k, static_cast<size_t>(k * kFramesPerKeyframe), tracked_[k]));
   const LoopClosingResult result = closer.Finish();
   EXPECT_EQ(result.loops, 0);
   EXPECT_FALSE(result.pose_graph.ok);
