@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -114,6 +115,36 @@ void WriteMapPly(const std::string& path, const StaticMap& map) {
     std::memcpy(out + 15, &observations, sizeof(observations));
   }
   WriteFileAtomically(path, data);
+}
+
+StaticMap ReadMapPly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  std::string line;
+  size_t vertices = 0;
+  bool binary = false, ended = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    binary = binary || line == "format binary_little_endian 1.0";
+    if ((ended = line == "end_header")) break;
+  }
+  if (!ended || !binary) throw InputError(path + ": not a binary little-endian PLY written by dynvo");
+  StaticMap map;
+  char vertex[19];
+  for (size_t i = 0; i < vertices && in.read(vertex, sizeof(vertex)); ++i) {
+    Eigen::Vector3f p;
+    std::memcpy(p.data(), vertex, 12);
+    map.points.push_back(p);
+    map.colours.emplace_back(static_cast<uint8_t>(vertex[14]), static_cast<uint8_t>(vertex[13]),
+                             static_cast<uint8_t>(vertex[12]));
+    int32_t observations;
+    std::memcpy(&observations, vertex + 15, 4);
+    map.observations.push_back(observations);
+  }
+  if (map.points.size() != vertices)
+    throw InputError(path + ": " + std::to_string(vertices) + " points declared, " + std::to_string(map.points.size()) +
+                     " found");
+  return map;
 }
 
 void WriteMapTopView(const std::string& path, const StaticMap& map) {

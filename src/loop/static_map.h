@@ -56,6 +56,10 @@ StaticMap BuildStaticMap(const std::vector<KeyframeMapSample>& samples, const st
 // observations (int). Throws InputError naming the file when it cannot be written.
 void WriteMapPly(const std::string& path, const StaticMap& map);
 
+// The points of a map.ply WriteMapPly wrote (colours and observations too). Throws InputError
+// naming the file when it is missing, not such a PLY, or shorter than it declares.
+StaticMap ReadMapPly(const std::string& path);
+
 // A top view of the map (PNG, 2 cm per pixel at most 2000 px a side): each pixel the colour of
 // the highest point above it, over the plane the world's x and z axes span (TUM's first
 // camera frame: y points down). Throws InputError naming the file when it cannot be written.

@@ -119,6 +119,14 @@ TEST(StaticMap, ThePlyDeclaresItsPointsAndHoldsThem) {
   EXPECT_EQ(static_cast<uint8_t>(vertex[14]), 200);
   EXPECT_EQ(observations, 7);
   EXPECT_FALSE(in.read(vertex, 1)) << "nothing after the declared points";
+  const StaticMap back = ReadMapPly(path);
+  ASSERT_EQ(back.points.size(), 2u);
+  EXPECT_EQ(back.points[0], map.points[0]);
+  EXPECT_EQ(back.colours[1], map.colours[1]);
+  EXPECT_EQ(back.observations, map.observations);
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 5);
+  EXPECT_THROW(ReadMapPly(path), InputError) << "shorter than declared";
+  EXPECT_THROW(ReadMapPly((dir.path() / "none.ply").string()), InputError);
   WriteMapTopView((dir.path() / "top.png").string(), map);
   EXPECT_GT(std::filesystem::file_size(dir.path() / "top.png"), 0u);
 }

@@ -73,6 +73,11 @@ class RealRun(unittest.TestCase):
                 self.assertEqual((r["frames"], r["loops"], r["false_loops"]),
                                  ("37" if r["kind"] == table3.NO_LOOP else "60", "0", "0"))
                 self.assertEqual(r["ate_vo_m"], r["ate_slam_m"])
+                people = json.loads(subprocess.run([os.path.join(BIN_DIR, "map_people"), "--dataset",
+                                                    os.path.dirname(gt), "--run", run_dir],
+                                                   capture_output=True, text=True, check=True).stdout)
+                self.assertEqual((int(r["map_points"]), float(r["map_on_people"])), (people["points"], people["share"]))
+                self.assertGreater(people["points"], 1000)
             with open(os.path.join(results, "table3_dev.md")) as f:
                 text = f.read()
             self.assertEqual(text.count("| baseline |"), 3)

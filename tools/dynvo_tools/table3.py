@@ -4,13 +4,14 @@ Each split holds a few generated sequences (LOOPS below): loops (the camera turn
 fifth in the middle of the room, looking outward, and sees where it started again) with
 people, a loop in a room papered with one panel over and over (false loop candidates
 everywhere), and a sequence without a loop. Each is run with each config in slam mode
-(`dynvo-cli run --mode slam`): its trajectory_online.txt is the VO trajectory (the loop closer
+with the map (`dynvo-cli run --mode slam --map`): its trajectory_online.txt is the VO trajectory (the loop closer
 never feeds back into tracking, so it equals a `--mode vo` run's trajectory.txt) and its
 trajectory.txt the loop-corrected one. Per (sequence, config): ATE (SE(3)-aligned RMSE) and
 per-second RPE of both, the loops accepted (loops.csv), and the false ones among them: an
 accepted loop whose measured relative pose is more than 10 cm or 5 degrees from the ground
 truth's (the frames' groundtruth.txt poses), and every loop accepted on the sequence without
-a loop (the loop path stopped before it comes back).
+a loop (the loop path stopped before it comes back); the map's points and the share of them on
+people (bench/map_people: ground-truth masks).
 
 Sequences are generated into OUT/seq (kept while their spec.json matches), runs go to
 OUT/runs/SEQUENCE/CONFIG. Writes RESULTS/table3_<split>.csv and RESULTS/table3_<split>.md.
@@ -78,7 +79,7 @@ LOOPS = (
 NO_LOOP_SHARE = 11.0 / 18.0  # of --frames
 
 CSV_COLUMNS = ("split", "sequence", "kind", "config", "frames", "ate_vo_m", "ate_slam_m", "rpe_vo_m_s",
-               "rpe_slam_m_s", "loops", "false_loops")
+               "rpe_slam_m_s", "loops", "false_loops", "map_points", "map_on_people")
 
 
 # ---------------------------------------------------------------- ground truth and loops
@@ -185,11 +186,17 @@ def run_row(split: str, source: LoopSource, sequence: Sequence, config: str, out
     """Runs one config in slam mode on one sequence and measures it: a CSV row."""
     what = "%s %s" % (sequence.name, config)
     run_dir = os.path.join(out_dir, "runs", sequence.name, config)
-    run_dynvo(RunRequest(sequence.folder, run_dir, config_path(config), (), ("--mode", "slam")), what)
+    run_dynvo(RunRequest(sequence.folder, run_dir, config_path(config), (), ("--mode", "slam", "--map")), what)
     info = read_json(what, os.path.join(run_dir, "run.json"))
     loops, wrong = false_loops(what, sequence.folder, run_dir, source.kind == NO_LOOP)
+    text = run_tool(what, [bin_path("map_people"), "--dataset", sequence.folder, "--run", run_dir])
+    path = os.path.join(run_dir, "map_people.json")
+    write_atomically(path, text)
+    people = read_json(what, path)
     values = {"split": split, "sequence": sequence.name, "kind": source.kind, "config": config,
-              "frames": info["counts"]["frames"], "loops": loops, "false_loops": wrong}
+              "frames": info["counts"]["frames"], "loops": loops, "false_loops": wrong,
+              "map_points": int(json_number(what, path, people, "points")),
+              "map_on_people": json_number(what, path, people, "share")}
     for mode, trajectory in (("vo", "trajectory_online.txt"), ("slam", "trajectory.txt")):
         values["ate_%s_m" % mode] = metric(what, "ate", sequence.folder, run_dir, trajectory,
                                            "absolute_translational_error_m")
@@ -209,18 +216,20 @@ def markdown(split: str, rows: list[dict[str, str]]) -> str:
         " trajectory_online.txt (the poses as tracked, = `--mode vo`), **slam**: trajectory.txt (loops"
         " closed); ratio = vo / slam. **loops**: accepted (loops.csv); **false**: of those, the ones more"
         " than %g cm or %g degrees from the ground truth's relative pose, and every one on a sequence without a"
-        " loop." % (
+        " loop. **map**: the points of `--map`'s map.ply, and the share of them on people (`map_people`: seen"
+        " inside a person's true mask at the depth measured there, within 3 cm, in every third frame)." % (
             split, FALSE_LOOP_M * 100, FALSE_LOOP_DEG),
         "",
-        "| sequence | kind | config | frames | ATE vo | ATE slam | ratio | RPE vo | RPE slam | loops | false |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "| sequence | kind | config | frames | ATE vo | ATE slam | ratio | RPE vo | RPE slam | loops | false | map points"
+        " | map on people |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         ate_vo, ate_slam = float(r["ate_vo_m"]), float(r["ate_slam_m"])
-        lines.append("| %s | %s | %s | %s | %.4f | %.4f | %.2fx | %.4f | %.4f | %s | %s |" % (
+        lines.append("| %s | %s | %s | %s | %.4f | %.4f | %.2fx | %.4f | %.4f | %s | %s | %s | %.2f%% |" % (
             r["sequence"], r["kind"], r["config"], r["frames"], ate_vo, ate_slam,
             ate_vo / ate_slam if ate_slam > 0 else float("nan"), float(r["rpe_vo_m_s"]),
-            float(r["rpe_slam_m_s"]), r["loops"], r["false_loops"]))
+            float(r["rpe_slam_m_s"]), r["loops"], r["false_loops"], r["map_points"], 100 * float(r["map_on_people"])))
     if split == "validation":
         lines += ["", VALIDATION_NOTE]
     lines += ["", "Generated by `bash tools/table3.sh --split %s`." % split]
