@@ -1,9 +1,10 @@
 #pragma once
 // How much of a static map lies on the people of a sequence with ground-truth masks: each map
 // point is moved into frames of the sequence by the estimated trajectory (the map's world is
-// the trajectory's) and counts as on a person when some frame sees it inside a person's mask at
-// the depth it measures there, that is on the person's surface (or touching it: the floor at a
-// person's feet).
+// the trajectory's). It is on a person when some frame sees it inside a person's mask at the
+// depth measured there (on the person's surface) and no frame sees it away from every person
+// at the depth measured there (the static scene: a desk edge a person's legs pass just in front
+// of is seen again once they have gone; a person's surface is not).
 
 #include <cstddef>
 #include <vector>
@@ -18,6 +19,9 @@ namespace dynvo {
 struct MapOnPeopleOptions {
   size_t frame_step = 3;            // every frame_step-th frame is checked (>= 1)
   double depth_tolerance_m = 0.03;  // a point this near the measured depth is on the surface seen
+  // Pixels this near a person's mask show neither the person nor the scene for sure (the
+  // sensor's depth and colour disagree at outlines): they confirm no point as the scene (>= 0).
+  int mask_margin_px = 5;
 };
 
 struct MapOnPeople {

@@ -34,8 +34,9 @@ constexpr const char* kOutputs[] = {"trajectory.txt", "timing.csv", "run.json", 
 // With --force, the earlier run's outputs go first, so that none of them outlives it.
 void RemoveEarlierRun(const fs::path& dir) {
   std::error_code ec;
-  for (const std::string name : {"trajectory.txt", "timing.csv", "run.json", "run.json.tmp", "debug",
-                                 "trajectory_online.txt", "keyframes.txt", "loops.csv", "map.ply", "map_top.png"}) {
+  std::vector<std::string> names(std::begin(kOutputs), std::end(kOutputs));
+  names.insert(names.end(), {"run.json.tmp", "debug"});
+  for (const std::string& name : names) {
     fs::remove_all(dir / name, ec);
     if (ec) throw InputError((dir / name).string() + ": cannot remove the earlier run's output: " + ec.message());
   }

@@ -216,8 +216,9 @@ def markdown(split: str, rows: list[dict[str, str]]) -> str:
         " trajectory_online.txt (the poses as tracked, = `--mode vo`), **slam**: trajectory.txt (loops"
         " closed); ratio = vo / slam. **loops**: accepted (loops.csv); **false**: of those, the ones more"
         " than %g cm or %g degrees from the ground truth's relative pose, and every one on a sequence without a"
-        " loop. **map**: the points of `--map`'s map.ply, and the share of them on people (`map_people`: seen"
-        " inside a person's true mask at the depth measured there, within 3 cm, in every third frame)." % (
+        " loop. **map**: the points of `--map`'s map.ply, and the share of them on people (`bench/map_people`:"
+        " in every third frame, seen inside a person's true mask at the depth measured there, within 3 cm, and"
+        " never away from the people at the depth measured there)." % (
             split, FALSE_LOOP_M * 100, FALSE_LOOP_DEG),
         "",
         "| sequence | kind | config | frames | ATE vo | ATE slam | ratio | RPE vo | RPE slam | loops | false | map points"
