@@ -211,7 +211,7 @@ def run_row(split: str, source: LoopSource, sequence: Sequence, config: str, out
 def markdown(split: str, rows: list[dict[str, str]]) -> str:
     """The split's table from its CSV rows."""
     lines = [
-        "VO against SLAM (`dynvo-cli run --mode slam`), **%s** split. **ATE**: SE(3)-aligned RMSE in m"
+        "VO against SLAM (`dynvo-cli run --mode slam --map`), **%s** split. **ATE**: SE(3)-aligned RMSE in m"
         " (`ate GT EST`); **RPE**: per-second RPE, translational RMSE in m/s (`rpe GT EST`). **vo**:"
         " trajectory_online.txt (the poses as tracked, = `--mode vo`), **slam**: trajectory.txt (loops"
         " closed); ratio = vo / slam. **loops**: accepted (loops.csv); **false**: of those, the ones more"
