@@ -21,6 +21,23 @@ Eigen::Quaterniond PoseQuaternion(const Pose& pose) {
   return q;
 }
 
+void ToPoseParameters(const Pose& pose, double* q_xyzw, double* t) {
+  const Eigen::Quaterniond q = PoseQuaternion(pose);
+  q_xyzw[0] = q.x();
+  q_xyzw[1] = q.y();
+  q_xyzw[2] = q.z();
+  q_xyzw[3] = q.w();
+  for (int i = 0; i < 3; ++i) t[i] = pose.translation()[i];
+}
+
+Pose PoseFromParameters(const double* q_xyzw, const double* t) {
+  const Eigen::Quaterniond q(q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]);
+  Pose pose = Pose::Identity();
+  pose.linear() = q.normalized().toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+  return pose;
+}
+
 double RotationAngle(const Pose& pose) {
   const double c = (pose.linear().trace() - 1.0) / 2.0;
   return std::acos(std::clamp(c, -1.0, 1.0));

@@ -16,6 +16,12 @@ Pose PoseFromTum(const Eigen::Vector3d& t, double qx, double qy, double qz, doub
 // The quaternion of a pose, normalised, with qw >= 0.
 Eigen::Quaterniond PoseQuaternion(const Pose& pose);
 
+// A pose as Ceres parameter blocks: q_xyzw[4] (PoseQuaternion, Eigen's [x, y, z, w] order, for
+// ceres::EigenQuaternionManifold) and t[3].
+void ToPoseParameters(const Pose& pose, double* q_xyzw, double* t);
+// The pose of Ceres parameter blocks q_xyzw[4] (normalised first) and t[3].
+Pose PoseFromParameters(const double* q_xyzw, const double* t);
+
 // Rotation angle of a pose in radians, in [0, pi].
 double RotationAngle(const Pose& pose);
 

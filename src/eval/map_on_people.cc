@@ -18,7 +18,7 @@ MapOnPeople MapPointsOnPeople(const std::vector<Eigen::Vector3f>& points, const 
   // Seen on a person's surface in some frame; seen on the static scene (away from every person)
   // in some frame.
   std::vector<bool> on_person(points.size(), false), on_scene(points.size(), false);
-  const Camera& c = dataset.camera();
+  const Camera& camera = dataset.camera();
   const int size = 2 * options.mask_margin_px + 1;
   const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(size, size));
   for (size_t i = 0; i < dataset.size(); i += std::max<size_t>(options.frame_step, 1)) {
@@ -30,8 +30,8 @@ MapOnPeople MapPointsOnPeople(const std::vector<Eigen::Vector3f>& points, const 
     for (size_t k = 0; k < points.size(); ++k) {
       const Eigen::Vector3d p = camera_from_world * points[k].cast<double>();
       if (p.z() <= 0.1) continue;
-      const int u = static_cast<int>(std::lround(c.fx * p.x() / p.z() + c.cx));
-      const int v = static_cast<int>(std::lround(c.fy * p.y() / p.z() + c.cy));
+      const Eigen::Vector2d pixel = camera.Project(p);
+      const int u = static_cast<int>(std::lround(pixel.x())), v = static_cast<int>(std::lround(pixel.y()));
       if (u < 0 || v < 0 || u >= mask.cols || v >= mask.rows) continue;
       if (std::abs(frame.depth.at<float>(v, u) - p.z()) >= options.depth_tolerance_m) continue;
       if (mask.at<uint8_t>(v, u) != 0)

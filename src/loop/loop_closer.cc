@@ -18,7 +18,8 @@ LoopCloser::LoopCloser(const Camera& camera, const LoopClosingOptions& options, 
       options_(options),
       executor_(*executor),
       recognition_(std::make_shared<PlaceRecognition>(camera, options.recognition)),
-      candidates_(std::make_shared<std::vector<LoopCandidate>>()) {
+      candidates_(std::make_shared<std::vector<LoopCandidate>>()),
+      map_samples_(std::make_shared<std::vector<KeyframeMapSample>>()) {
   options_.Check();
 }
 
@@ -38,18 +39,21 @@ void LoopCloser::Observe(const LoopFrame& frame) {
     auto made = std::make_shared<const LoopKeyframe>(MakeLoopKeyframe(
         keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features, frame.depth,
         options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
-    if (options_.build_map)
-      map_samples_.push_back(SampleKeyframe(frame.bgr, frame.depth, frame.excluded, camera_, options_.map));
     keyframes_.push_back(made);
-    // Each search waits for the one before: the database sees the keyframes in order, whatever
-    // thread runs them, so the loops found never depend on timing.
+    // Each search (and map sample) waits for the one before: the database sees the keyframes in
+    // order, whatever thread runs them, so the loops found never depend on timing.
     auto previous = std::move(last_search_);
     auto recognition = recognition_;
     auto candidates = candidates_;
-    last_search_ = std::make_shared<Task<void>>(executor_.Submit([previous, recognition, candidates, made] {
-      if (previous && previous->valid()) previous->Get();
-      for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
-    }));
+    auto samples = map_samples_;
+    const bool sample = options_.build_map;
+    last_search_ = std::make_shared<Task<void>>(executor_.Submit(
+        [previous, recognition, candidates, samples, made, sample, bgr = frame.bgr, depth = frame.depth,
+         excluded = frame.excluded, camera = camera_, map_options = options_.map] {
+          if (previous && previous->valid()) previous->Get();
+          for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
+          if (sample) samples->push_back(SampleKeyframe(bgr, depth, excluded, camera, map_options));
+        }));
   }
   frames_.push_back({frame.stamp, frame.world_from_camera, static_cast<int>(keyframes_.size()) - 1});
 }
@@ -80,7 +84,7 @@ LoopClosingResult LoopCloser::Finish() {
     result.keyframe_stamps.push_back(keyframes_[k]->stamp);
     result.keyframe_poses.push_back(nodes[k].world_from_camera);  // unchanged unless the graph was solved
   }
-  if (options_.build_map) result.map = BuildStaticMap(map_samples_, result.keyframe_poses, options_.map);
+  if (options_.build_map) result.map = BuildStaticMap(*map_samples_, result.keyframe_poses, options_.map);
   for (const FrameEntry& f : frames_) {
     result.frame_stamps.push_back(f.stamp);
     if (f.keyframe < 0) {

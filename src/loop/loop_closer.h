@@ -66,8 +66,8 @@ class LoopCloser {
   LoopCloser& operator=(const LoopCloser&) = delete;
 
   // Records a frame's online pose. A keyframe also keeps its static features with depth and its
-  // reduced depth image, and its search for loops starts on the executor; with build_map, its
-  // map sample is taken. Throws InputError when a keyframe comes without its features.
+  // reduced depth image, and its search for loops (and with build_map its map sample) starts on
+  // the executor. Throws InputError when a keyframe comes without its features.
   void Observe(const LoopFrame& frame);
 
   const LoopClosingOptions& options() const { return options_; }
@@ -88,10 +88,10 @@ class LoopCloser {
   Executor& executor_;
   std::vector<FrameEntry> frames_;
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
-  std::vector<KeyframeMapSample> map_samples_;  // build_map: one per keyframe
   // Owned by the searches once started: each search waits for the one before.
   std::shared_ptr<PlaceRecognition> recognition_;
   std::shared_ptr<std::vector<LoopCandidate>> candidates_;
+  std::shared_ptr<std::vector<KeyframeMapSample>> map_samples_;  // build_map: one per keyframe
   std::shared_ptr<Task<void>> last_search_;
 };
 

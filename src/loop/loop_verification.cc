@@ -81,8 +81,8 @@ double DepthAgreement(const LoopKeyframe& query, const LoopKeyframe& candidate, 
   for (const Eigen::Vector3d& point : candidate.points_in_camera) {
     const Eigen::Vector3d p = query_from_candidate * point;
     if (p.z() <= 0.0) continue;
-    const int u = static_cast<int>((camera.fx * p.x() / p.z() + camera.cx) * query.depth_scale);
-    const int v = static_cast<int>((camera.fy * p.y() / p.z() + camera.cy) * query.depth_scale);
+    const Eigen::Vector2d pixel = camera.Project(p) * query.depth_scale;
+    const int u = static_cast<int>(pixel.x()), v = static_cast<int>(pixel.y());
     if (u < 0 || v < 0 || u >= query.depth.cols || v >= query.depth.rows) continue;
     const float measured = query.depth.at<float>(v, u);
     if (!(measured > 0.0f)) continue;

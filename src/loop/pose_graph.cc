@@ -25,20 +25,6 @@ struct NodeState {
   double p[3];
 };
 
-NodeState ToState(const Pose& world_from_camera) {
-  const Eigen::Quaterniond q = PoseQuaternion(world_from_camera);
-  return {
-      {q.x(), q.y(), q.z(), q.w()},
-      {world_from_camera.translation().x(), world_from_camera.translation().y(), world_from_camera.translation().z()}};
-}
-
-Pose FromState(const NodeState& state) {
-  Pose pose = Pose::Identity();
-  pose.linear() = Eigen::Quaterniond(state.q[3], state.q[0], state.q[1], state.q[2]).normalized().toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(state.p[0], state.p[1], state.p[2]);
-  return pose;
-}
-
 // Why the graph cannot be solved, "" when it can.
 std::string GraphFailure(const std::vector<PoseGraphEdge>& edges, const std::vector<PoseGraphNode>& nodes) {
   bool any_fixed = false;
@@ -61,7 +47,10 @@ PoseGraphReport OptimizePoseGraph(const PoseGraphOptions& options, const std::ve
   if (!report.failure.empty()) return report;
   std::vector<NodeState> states;
   states.reserve(nodes->size());
-  for (const PoseGraphNode& node : *nodes) states.push_back(ToState(node.world_from_camera));
+  for (const PoseGraphNode& node : *nodes) {
+    states.emplace_back();
+    ToPoseParameters(node.world_from_camera, states.back().q, states.back().p);
+  }
 
   ceres::Problem problem;  // owns the cost and loss functions
   for (const PoseGraphEdge& edge : edges) {
@@ -94,7 +83,8 @@ PoseGraphReport OptimizePoseGraph(const PoseGraphOptions& options, const std::ve
     report.failure = "ceres: " + summary.message;
     return report;
   }
-  for (size_t i = 0; i < states.size(); ++i) (*nodes)[i].world_from_camera = FromState(states[i]);
+  for (size_t i = 0; i < states.size(); ++i)
+    (*nodes)[i].world_from_camera = PoseFromParameters(states[i].q, states[i].p);
   report.ok = true;
   return report;
 }

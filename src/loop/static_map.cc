@@ -39,8 +39,7 @@ KeyframeMapSample SampleKeyframe(const cv::Mat& bgr, const cv::Mat& depth, const
     for (int u = options.pixel_step / 2; u < depth.cols; u += options.pixel_step) {
       const float z = depth.at<float>(v, u);
       if (!(z > 0.0f) || z > options.max_depth_m || (!grown.empty() && grown.at<uint8_t>(v, u) != 0)) continue;
-      sample.points_in_camera.emplace_back(static_cast<float>((u - camera.cx) / camera.fx * z),
-                                           static_cast<float>((v - camera.cy) / camera.fy * z), z);
+      sample.points_in_camera.push_back(camera.Backproject(Eigen::Vector2d(u, v), z).cast<float>());
       sample.colours.push_back(bgr.at<cv::Vec3b>(v, u));
     }
   return sample;

@@ -42,24 +42,12 @@ struct PoseBlock {
 };
 
 PoseBlock ToBlock(const Pose& camera_from_world) {
-  const Eigen::Quaterniond q = PoseQuaternion(camera_from_world);
   PoseBlock b;
-  b.q[0] = q.x();
-  b.q[1] = q.y();
-  b.q[2] = q.z();
-  b.q[3] = q.w();
-  for (int i = 0; i < 3; ++i) b.t[i] = camera_from_world.translation()[i];
+  ToPoseParameters(camera_from_world, b.q, b.t);
   return b;
 }
 
-Pose FromBlock(const PoseBlock& b) {
-  Eigen::Quaterniond q(b.q[3], b.q[0], b.q[1], b.q[2]);
-  q.normalize();
-  Pose pose = Pose::Identity();
-  pose.linear() = q.toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(b.t[0], b.t[1], b.t[2]);
-  return pose;
-}
+Pose FromBlock(const PoseBlock& b) { return PoseFromParameters(b.q, b.t); }
 
 struct SquaredErrors {
   double pixel = 0.0;  // reprojection, pixels squared

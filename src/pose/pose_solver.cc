@@ -231,14 +231,6 @@ bool SolveRound(const std::vector<Eigen::Vector3d>& points_in_world, const std::
   return summary.IsSolutionUsable();
 }
 
-Pose PoseFromParameters(const double* q_xyzw, const double* t) {
-  const Eigen::Quaterniond refined(q_xyzw[3], q_xyzw[0], q_xyzw[1], q_xyzw[2]);
-  Pose pose = Pose::Identity();
-  pose.linear() = refined.normalized().toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-  return pose;
-}
-
 // The matches of `start` within the outlier threshold at `pose`; `sum_squared` (optional): the
 // points' squared errors summed.
 MatchSets Inliers(const std::vector<Eigen::Vector3d>& points_in_world, const std::vector<Eigen::Vector2d>& pixels,

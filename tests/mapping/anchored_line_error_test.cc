@@ -36,8 +36,8 @@ TEST(AnchoredLineError, IsTheLineErrorOfTheSegmentMovedFromTheAnchorIntoTheObser
         Eigen::Vector2d(-(exact.end - exact.start).y(), (exact.end - exact.start).x()).normalized();
     const LineSegment beside{exact.start + 5.0 * across, exact.end + 5.0 * across};
     double qa[4], ta[3], qb[4], tb[3];
-    test::ToPoseParameters(a, qa, ta);
-    test::ToPoseParameters(b, qb, tb);
+    ToPoseParameters(a, qa, ta);
+    ToPoseParameters(b, qb, tb);
     const double* parameters[4] = {qa, ta, qb, tb};
     for (const LineSegment& seen : {exact, beside}) {
       const Eigen::Vector3d l = ImageLineCoefficients(seen);

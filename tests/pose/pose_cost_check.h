@@ -16,16 +16,6 @@ namespace dynvo::test {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// camera_from_world as q[4] (Eigen's [x, y, z, w]) and t[3].
-inline void ToPoseParameters(const Pose& camera_from_world, double* q, double* t) {
-  const Eigen::Quaterniond quat = PoseQuaternion(camera_from_world);
-  q[0] = quat.x();
-  q[1] = quat.y();
-  q[2] = quat.z();
-  q[3] = quat.w();
-  for (int k = 0; k < 3; ++k) t[k] = camera_from_world.translation()[k];
-}
-
 // The analytic Jacobians of `cost` (blocks q[4], t[3]) at (q, t), mapped onto the six tangent
 // directions (EigenQuaternionManifold, translation), equal central differences along them.
 inline void ExpectJacobiansMatchCentralDifferences(const ceres::CostFunction& cost, const double* q0,

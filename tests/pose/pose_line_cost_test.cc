@@ -71,7 +71,7 @@ Scene MakeScene(unsigned seed, int n, bool exact = false) {
     seen.end += error_px * (u(rng) > 0 ? 1.0 : -1.0) * across;
     s.observed.push_back(ImageLineCoefficients(seen));
   }
-  test::ToPoseParameters(s.camera_from_world, s.q, s.t);
+  ToPoseParameters(s.camera_from_world, s.q, s.t);
   return s;
 }
 

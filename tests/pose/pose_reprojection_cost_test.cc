@@ -45,7 +45,7 @@ Scene MakeScene(unsigned seed, int n) {
     const double error_px = i % 2 == 0 ? 1.5 * std::abs(u(rng)) : 14.0 + 6.0 * u(rng);
     s.observed.push_back(pixel + error_px * Eigen::Vector2d(u(rng), u(rng)).normalized());
   }
-  test::ToPoseParameters(s.camera_from_world, s.q, s.t);
+  ToPoseParameters(s.camera_from_world, s.q, s.t);
   return s;
 }
 

@@ -56,10 +56,11 @@ class EvaluatedRun:
     run_dir: str
     info: dict                                   # run.json
     reports: dict[str, dict] = field(default_factory=dict)  # metric name -> its JSON report
+    suffix: str = ""                             # of the report files: "" for trajectory.txt
 
     def rmse(self, metric: Metric) -> float:
         """The headline RMSE of a metric's report."""
-        return json_number(self.run_dir, os.path.join(self.run_dir, metric.name + ".json"),
+        return json_number(self.run_dir, os.path.join(self.run_dir, metric.name + self.suffix + ".json"),
                            self.reports[metric.name], metric.field + ".rmse")
 
     def frames(self) -> int:
@@ -95,17 +96,20 @@ def run_dynvo(request: RunRequest, what: str) -> None:
     run_tool(what, request.command())
 
 
-def evaluate_run(dataset: str, run_dir: str, metrics: Sequence[Metric], what: str) -> EvaluatedRun:
-    """Evaluates the run in run_dir against DATASET/groundtruth.txt with each metric, each report
-    written to RUN_DIR/<metric>.json and read back, with run.json."""
+def evaluate_run(dataset: str, run_dir: str, metrics: Sequence[Metric], what: str,
+                 trajectory: str = "trajectory.txt") -> EvaluatedRun:
+    """Evaluates RUN_DIR/TRAJECTORY against DATASET/groundtruth.txt with each metric, each report
+    written to RUN_DIR/<metric>.json (<metric>_<trajectory's stem>.json for another trajectory
+    than trajectory.txt, e.g. slam mode's trajectory_online.txt) and read back, with run.json."""
     groundtruth = os.path.join(dataset, "groundtruth.txt")
     if not os.path.isfile(groundtruth):
         raise ToolError("%s: %s: no groundtruth.txt to evaluate against" % (what, display_path(dataset)))
-    run = EvaluatedRun(run_dir, read_json(what, os.path.join(run_dir, "run.json")))
+    suffix = "" if trajectory == "trajectory.txt" else "_" + os.path.splitext(trajectory)[0]
+    run = EvaluatedRun(run_dir, read_json(what, os.path.join(run_dir, "run.json")), suffix=suffix)
     for metric in metrics:
-        text = run_tool(what, [bin_path(metric.program), groundtruth, os.path.join(run_dir, "trajectory.txt"),
+        text = run_tool(what, [bin_path(metric.program), groundtruth, os.path.join(run_dir, trajectory),
                                *metric.arguments, "--json"])
-        path = os.path.join(run_dir, metric.name + ".json")
+        path = os.path.join(run_dir, metric.name + suffix + ".json")
         write_atomically(path, text)
         run.reports[metric.name] = read_json(what, path)
         run.rmse(metric)  # a report without its number is an error here, not later

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 from .common import ROOT, ToolError, bin_path, config_path, display_path, json_number, log, read_json, \
     run_parallel, run_tool, write_atomically
-from .evaluation import RunRequest, run_dynvo
+from .evaluation import ATE, RPE_PER_SECOND, RunRequest, evaluate_run, run_dynvo
 from .suite import VALIDATION_NOTE, Sequence, comma_list, generate
 
 COMMAND = "table3"
@@ -173,35 +173,23 @@ def false_loops(what: str, dataset: str, run_dir: str, no_loop: bool = False) ->
 # ---------------------------------------------------------------- runs
 
 
-def metric(what: str, program: str, dataset: str, run_dir: str, trajectory: str, key: str) -> float:
-    """The RMSE of `PROGRAM GT RUN_DIR/TRAJECTORY --json`, its report kept beside the run."""
-    text = run_tool(what, [bin_path(program), os.path.join(dataset, "groundtruth.txt"),
-                           os.path.join(run_dir, trajectory), "--json"])
-    path = os.path.join(run_dir, "%s_%s.json" % (program, trajectory.replace(".txt", "")))
-    write_atomically(path, text)
-    return json_number(what, path, read_json(what, path), key + ".rmse")
-
-
 def run_row(split: str, source: LoopSource, sequence: Sequence, config: str, out_dir: str) -> dict[str, str]:
     """Runs one config in slam mode on one sequence and measures it: a CSV row."""
     what = "%s %s" % (sequence.name, config)
     run_dir = os.path.join(out_dir, "runs", sequence.name, config)
     run_dynvo(RunRequest(sequence.folder, run_dir, config_path(config), (), ("--mode", "slam", "--map")), what)
-    info = read_json(what, os.path.join(run_dir, "run.json"))
     loops, wrong = false_loops(what, sequence.folder, run_dir, source.kind == NO_LOOP)
     text = run_tool(what, [bin_path("map_people"), "--dataset", sequence.folder, "--run", run_dir])
     path = os.path.join(run_dir, "map_people.json")
     write_atomically(path, text)
     people = read_json(what, path)
     values = {"split": split, "sequence": sequence.name, "kind": source.kind, "config": config,
-              "frames": info["counts"]["frames"], "loops": loops, "false_loops": wrong,
+              "loops": loops, "false_loops": wrong,
               "map_points": int(json_number(what, path, people, "points")),
               "map_on_people": json_number(what, path, people, "share")}
     for mode, trajectory in (("vo", "trajectory_online.txt"), ("slam", "trajectory.txt")):
-        values["ate_%s_m" % mode] = metric(what, "ate", sequence.folder, run_dir, trajectory,
-                                           "absolute_translational_error_m")
-        values["rpe_%s_m_s" % mode] = metric(what, "rpe", sequence.folder, run_dir, trajectory,
-                                             "translational_error_m")
+        run = evaluate_run(sequence.folder, run_dir, (RPE_PER_SECOND, ATE), what, trajectory)
+        values.update({"frames": run.frames(), "ate_%s_m" % mode: run.rmse(ATE), "rpe_%s_m_s" % mode: run.rmse(RPE_PER_SECOND)})
     return {key: repr(v) if isinstance(v, float) else str(v) for key, v in values.items()}
 
 
