@@ -41,13 +41,15 @@ TEST(OdometryConfig, PaperConfigIsThePapersMethodLiterally) {
   EXPECT_FALSE(c.tracking.coherent_motion.enabled);
 }
 
-TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMaskAndLines) {
+TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMaskLinesAndOrbSlam2DepthWeight) {
   nlohmann::json paper = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("paper.json"), {}));
   nlohmann::json ipl = OdometryConfigToJson(LoadOdometryConfig(ConfigPath("ipl.json"), {}));
   EXPECT_EQ(ipl["mask_source"], "detector");
   EXPECT_EQ(ipl["detector"]["model"], "data/models/yolo-fastest-1.1_body.weights");  // tools/fetch_models.sh
   EXPECT_EQ(ipl["features"]["lines"]["enabled"], true);  // the second paper's point-line tracking
   ipl["features"]["lines"]["enabled"] = false;
+  EXPECT_EQ(ipl["local_ba"]["virtual_baseline_m"], 0.08);  // ORB-SLAM2's depth weight (bf 40), as the paper's
+  ipl["local_ba"]["virtual_baseline_m"] = paper["local_ba"]["virtual_baseline_m"];
   for (const char* section : {"mask_source", "detector", "dynamic_mask"}) {  // dynamic_mask: the unused differencing
     paper.erase(section);
     ipl.erase(section);
