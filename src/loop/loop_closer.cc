@@ -6,12 +6,6 @@
 
 namespace dynvo {
 
-namespace {
-// Keyframes sharing at least this many map points get a covisibility edge (ORB-SLAM2's
-// essential graph: 100).
-constexpr int kMinSharedPoints = 100;
-}  // namespace
-
 void LoopClosingOptions::Check() const {
   recognition.Check();
   pose_graph.Check();
@@ -46,13 +40,6 @@ void LoopCloser::Observe(const LoopFrame& frame) {
         keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features, frame.depth,
         options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
     keyframes_.push_back(made);
-    const size_t index = keyframes_.size() - 1;
-    for (const auto& [map_id, shared] : frame.covisible) {
-      auto earlier = keyframe_of_map_id_.find(map_id);
-      if (shared >= kMinSharedPoints && earlier != keyframe_of_map_id_.end() && earlier->second + 1 < index)
-        covisible_pairs_.emplace_back(earlier->second, index);
-    }
-    if (frame.map_keyframe_id >= 0) keyframe_of_map_id_[frame.map_keyframe_id] = index;
     // Each search (and map sample) waits for the one before: the database sees the keyframes in
     // order, whatever thread runs them, so the loops found never depend on timing.
     auto previous = std::move(last_search_);
@@ -82,11 +69,6 @@ LoopClosingResult LoopCloser::Finish() {
     if (k > 0)
       edges.push_back({k - 1, k, keyframes_[k - 1]->world_from_camera.inverse() * keyframes_[k]->world_from_camera,
                        PoseGraphEdgeKind::kOdometry});
-  }
-  for (const auto& [a, b] : covisible_pairs_) {
-    edges.push_back({a, b, keyframes_[a]->world_from_camera.inverse() * keyframes_[b]->world_from_camera,
-                     PoseGraphEdgeKind::kCovisibility});
-    ++result.covisibility_edges;
   }
   for (const LoopCandidate& c : result.candidates) {
     if (!c.accepted()) continue;

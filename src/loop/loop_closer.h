@@ -4,10 +4,7 @@
 // the pose graph of the keyframes and every frame follows the keyframe it was tracked from.
 
 #include <cstddef>
-#include <cstdint>
 #include <memory>
-#include <unordered_map>
-#include <utility>
 #include <vector>
 
 #include "core/camera.h"
@@ -34,7 +31,6 @@ struct LoopClosingOptions {
 struct LoopClosingResult {
   std::vector<LoopCandidate> candidates;  // every candidate examined, in keyframe order
   int loops = 0;                          // accepted, each a pose graph edge
-  int covisibility_edges = 0;             // pose graph edges between keyframes that shared map points
   PoseGraphReport pose_graph;             // ok = false when there was no loop to close
   // Keyframes: input frame, stamp, corrected pose.
   std::vector<size_t> keyframe_frames;
@@ -52,10 +48,6 @@ struct LoopFrame {
   double stamp = 0.0;
   Pose world_from_camera = Pose::Identity();  // as tracked
   bool keyframe = false;                      // a keyframe from a tracked pose
-  // Keyframes only: its id in the tracker's local map, and the earlier keyframes of that map it
-  // shares map points with (id, points): covisibility edges of the pose graph.
-  int64_t map_keyframe_id = -1;
-  std::vector<std::pair<int64_t, int>> covisible;
   // Keyframes only:
   const FrameFeatures* static_features = nullptr;  // the features off the dynamic mask
   cv::Mat bgr;                                     // CV_8UC3 (build_map)
@@ -96,8 +88,6 @@ class LoopCloser {
   Executor& executor_;
   std::vector<FrameEntry> frames_;
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
-  std::unordered_map<int64_t, size_t> keyframe_of_map_id_;  // tracker keyframe id -> index into keyframes_
-  std::vector<std::pair<size_t, size_t>> covisible_pairs_;  // (earlier, later) beyond consecutive ones
   // Owned by the searches once started: each search waits for the one before.
   std::shared_ptr<PlaceRecognition> recognition_;
   std::shared_ptr<std::vector<LoopCandidate>> candidates_;

@@ -113,23 +113,6 @@ void LocalMap::Clear() {
   points_.clear();
 }
 
-std::vector<std::pair<int64_t, int>> LocalMap::SharedPoints(int64_t keyframe_id) const {
-  std::vector<std::pair<int64_t, int>> shared;
-  auto self = std::find_if(keyframes_.begin(), keyframes_.end(),
-                           [keyframe_id](const Keyframe& k) { return k.id == keyframe_id; });
-  if (self == keyframes_.end()) return shared;
-  std::unordered_set<int64_t> seen;
-  for (const KeyframeObservation& obs : self->observations) seen.insert(obs.point_id);
-  for (const Keyframe& other : keyframes_) {
-    if (other.id == keyframe_id) continue;
-    const int n =
-        static_cast<int>(std::count_if(other.observations.begin(), other.observations.end(),
-                                       [&seen](const KeyframeObservation& o) { return seen.count(o.point_id) > 0; }));
-    if (n > 0) shared.emplace_back(other.id, n);
-  }
-  return shared;
-}
-
 const MapPoint* LocalMap::FindPoint(int64_t point_id) const {
   auto it = points_.find(point_id);
   return it == points_.end() ? nullptr : &it->second;

@@ -74,10 +74,6 @@ class LocalMap {
   // The point with this id, nullptr when it is not kept.
   const MapPoint* FindPoint(int64_t point_id) const;
   size_t num_keyframes() const { return keyframes_.size(); }
-  // The other kept keyframes that observe points keyframe `keyframe_id` observes, oldest first,
-  // each with how many it shares (its covisibility, as in ORB-SLAM's graph); empty for an
-  // unknown id.
-  std::vector<std::pair<int64_t, int>> SharedPoints(int64_t keyframe_id) const;
   size_t num_points() const { return points_.size(); }
 
  private:

@@ -68,7 +68,6 @@ nlohmann::json LoopsJson(const LoopClosingResult& result, bool with_map) {
                           {"candidates", result.candidates.size()},
                           {"verified", verified},
                           {"accepted", result.loops},
-                          {"covisibility_edges", result.covisibility_edges},
                           {"pose_graph", graph}};
   if (with_map) loops["map_points"] = result.map.points.size();
   return loops;

@@ -56,8 +56,7 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
 // What the loop closer takes of a frame: for a keyframe, its static features and images, and
 // with the map the pixels it must leave out (the dynamic mask and every person found, moving or
 // still).
-LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool keyframe, const LocalMap& map,
-                        bool with_map) {
+LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool keyframe, bool with_map) {
   LoopFrame loop;
   loop.frame = frame.index;
   loop.stamp = frame.stamp;
@@ -65,10 +64,6 @@ LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool key
   loop.keyframe = keyframe;
   if (!keyframe) return loop;
   loop.static_features = &out.features.split.kept;
-  if (!map.keyframes().empty()) {
-    loop.map_keyframe_id = map.keyframes().back().id;  // this frame's, just inserted
-    loop.covisible = map.SharedPoints(loop.map_keyframe_id);
-  }
   loop.bgr = frame.bgr;
   loop.depth = frame.depth;
   if (!with_map) return loop;
@@ -118,8 +113,7 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   if (out.mapping.status == MappingStatus::kAdjusted) AdoptRefinedMap(frame.index, out);
   // 5. slam mode: keyframes from a tracked pose go to place recognition, beside tracking.
   if (loop_closer_)
-    loop_closer_->Observe(
-        MakeLoopFrame(frame, out, tracked_keyframe, tracker_.map(), loop_closer_->options().build_map));
+    loop_closer_->Observe(MakeLoopFrame(frame, out, tracked_keyframe, loop_closer_->options().build_map));
   // 6. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)

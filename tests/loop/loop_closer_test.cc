@@ -117,24 +117,6 @@ TEST_F(LoopCloserTest, TheRevisitClosesTheLoopAndEveryFrameFollows) {
     EXPECT_TRUE(result.frame_poses[2 * k + 1].isApprox(result.keyframe_poses[k] * Beside(), 1e-9)) << k;
 }
 
-TEST_F(LoopCloserTest, KeyframesSharingEnoughPointsBeyondTheLastOneAreCovisibilityEdges) {
-  Executor executor(1);
-  LoopCloser closer(room_->camera, {}, &executor);
-  for (int k = 0; k < kKeyframes; ++k) {
-    LoopFrame keyframe = Keyframe(k, static_cast<size_t>(k * kFramesPerKeyframe), tracked_[k]);
-    keyframe.map_keyframe_id = 1000 + k;  // the tracker's ids
-    // The one before (already an odometry edge), two before with enough points, three before
-    // with too few, and a keyframe the closer never saw: only the second is a new edge.
-    keyframe.covisible = {{1000 + k - 3, 99}, {1000 + k - 2, 100}, {1000 + k - 1, 400}, {7, 500}};
-    closer.Observe(keyframe);
-  }
-  const LoopClosingResult result = closer.Finish();
-  EXPECT_EQ(result.covisibility_edges, kKeyframes - 2);
-  ASSERT_TRUE(result.pose_graph.ok) << result.pose_graph.failure;
-  // They agree with tracking, so the loop still closes as without them.
-  for (int k = 40; k < kKeyframes; ++k) EXPECT_LT(PositionError(result.keyframe_poses[k], k), 0.02) << k;
-}
-
 TEST_F(LoopCloserTest, ResultsDoNotDependOnTheThreads) {
   const LoopClosingResult serial = Close(0), parallel = Close(2);
   ASSERT_EQ(serial.candidates.size(), parallel.candidates.size());

@@ -101,21 +101,6 @@ TEST(LocalMap, DropsPointsSeenLongestAgoBeyondMaxPoints) {
   EXPECT_EQ(observations, 5u);
 }
 
-TEST(LocalMap, SharedPointsCountsWhatOtherKeyframesAlsoObserve) {
-  LocalMap map{LocalMapOptions{}};
-  std::vector<int64_t> ids;
-  for (int i = 0; i < 6; ++i) ids.push_back(map.AddPoint(Eigen::Vector3d(0, 0, 2), Descriptor(1), 0));
-  const int64_t k0 = map.AddKeyframe(MakeKeyframe(0, ids));
-  const int64_t k1 = map.AddKeyframe(MakeKeyframe(5, {ids[5]}));
-  const int64_t k2 = map.AddKeyframe(MakeKeyframe(9, {ids[1], ids[2], ids[3]}));
-  const int64_t k3 = map.AddKeyframe(MakeKeyframe(12, {ids[2], ids[3], ids[5]}));
-  using Shared = std::vector<std::pair<int64_t, int>>;
-  EXPECT_EQ(map.SharedPoints(k2), (Shared{{k0, 3}, {k3, 2}}));  // k1 shares nothing: left out
-  EXPECT_EQ(map.SharedPoints(k3), (Shared{{k0, 3}, {k1, 1}, {k2, 2}}));
-  EXPECT_EQ(map.SharedPoints(k1), (Shared{{k0, 1}, {k3, 1}}));
-  EXPECT_TRUE(map.SharedPoints(k3 + 100).empty());  // not in the map
-}
-
 TEST(LocalMap, SettersAndClear) {
   LocalMap map;
   const int64_t a = map.AddPoint({0, 0, 1}, Descriptor(1), 0, 10.0f);

@@ -5,6 +5,7 @@
 // virtual baseline of 0.08 m) the estimated path came out 6% too long here (Sim(3) scale 0.941);
 // with the default weight its scale is 0.990.
 
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
