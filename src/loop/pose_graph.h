@@ -1,7 +1,7 @@
 #pragma once
-// An SE(3) pose graph over keyframes (Ceres): odometry edges between consecutive keyframes,
-// covisibility edges between keyframes that shared map points, loop edges from place
-// recognition. Optimising it spreads a loop's closing error over the keyframes in between.
+// An SE(3) pose graph over keyframes (Ceres): tracking's edges between keyframes (consecutive
+// ones in slam mode) and loop edges from place recognition. Optimising it spreads a loop's
+// closing error over the keyframes in between.
 
 #include <cstdint>
 #include <string>
@@ -13,7 +13,7 @@ namespace dynvo {
 
 class ConfigRegistry;
 
-enum class PoseGraphEdgeKind { kOdometry, kCovisibility, kLoop };
+enum class PoseGraphEdgeKind { kOdometry, kLoop };
 
 struct PoseGraphNode {
   int64_t id = -1;                            // Keyframe::id
