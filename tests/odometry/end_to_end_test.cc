@@ -19,6 +19,7 @@
 #include "dataset/text_lines.h"
 #include "dataset/trajectory_io.h"
 #include "eval/rpe.h"
+#include "odometry/generated_sequence.h"
 #include "odometry/odometry_config.h"
 #include "odometry/sequence_runner.h"
 #include "support/shared_data.h"
@@ -175,9 +176,7 @@ TEST(EndToEndErrors, GroundTruthMasksNeedASequenceWithMasks) {
   test::TempDir dir;
   SyntheticSequenceOptions options;
   options.frames = 3;
-  const std::string sequence = (dir.path() / "sequence").string();
-  PrepareOutputFolder(sequence, /*force=*/false);
-  WriteSyntheticSequence(options, sequence);
+  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
   std::filesystem::remove(sequence + "/masks.txt");
   RunRequest request;
   request.dataset = sequence;
@@ -343,9 +342,7 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   options.camera_path = CameraPathPreset::kXyz;
   options.frames = 90;
   options.seed = 1;
-  const std::string sequence = (dir.path() / "sequence").string();
-  PrepareOutputFolder(sequence, /*force=*/false);
-  WriteSyntheticSequence(options, sequence);
+  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
   const std::vector<std::string> model = {"detector.model=\"" + shared + "/models/yolo-fastest-1.1_body.weights\"",
                                           "detector.config=\"" + shared + "/models/yolo-fastest-1.1_body.cfg\""};
   const std::string ahead = (dir.path() / "ahead").string(), in_turn = (dir.path() / "in_turn").string();

@@ -15,10 +15,10 @@
 #include "dataset/tum_dataset.h"
 #include "eval/map_on_people.h"
 #include "loop/static_map.h"
+#include "odometry/generated_sequence.h"
 #include "odometry/sequence_runner.h"
 #include "support/temp_dir.h"
 #include "synth/synthetic_sequence.h"
-#include "synth/tum_writer.h"
 
 namespace dynvo {
 namespace {
@@ -30,9 +30,7 @@ TEST(SlamMapEndToEnd, PeopleStayOutOfTheMap) {
   options.camera_path = CameraPathPreset::kXyz;
   options.frames = 90;
   options.seed = 2;
-  const std::string sequence = (dir.path() / "sequence").string();
-  PrepareOutputFolder(sequence, /*force=*/false);
-  WriteSyntheticSequence(options, sequence);
+  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
   const TumDataset dataset(sequence);
 
   const auto run = [&](const std::string& name, const std::string& mask_source) {

@@ -5,7 +5,6 @@
 // virtual baseline of 0.08 m) the estimated path came out 6% too long here (Sim(3) scale 0.941);
 // with the default weight its scale is 0.990.
 
-#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -13,10 +12,10 @@
 #include "dataset/trajectory_io.h"
 #include "dataset/tum_dataset.h"
 #include "eval/ate.h"
+#include "odometry/generated_sequence.h"
 #include "odometry/sequence_runner.h"
 #include "support/temp_dir.h"
 #include "synth/synthetic_sequence.h"
-#include "synth/tum_writer.h"
 
 namespace dynvo {
 namespace {
@@ -28,9 +27,7 @@ TEST(TurningPathScale, LoopPathLengthWithinTwoAndAHalfPercent) {
   options.camera_path = CameraPathPreset::kLoop;
   options.frames = 300;
   options.seed = 5;
-  const std::string sequence = (dir.path() / "sequence").string();
-  PrepareOutputFolder(sequence, /*force=*/false);
-  WriteSyntheticSequence(options, sequence);
+  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
 
   RunRequest request;
   request.dataset = sequence;
