@@ -61,7 +61,9 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     const std::optional<double> speed = Speed(p);
     if (evidence.difference_share >= options_.min_difference_share || (speed && *speed >= options_.min_speed_m_s))
       p.since_evidence = 0;
-    moving.push_back(p.since_evidence <= options_.hold_frames);
+    // Without enough past to measure its speed a person may be walking toward the camera:
+    // judged moving until the past shows otherwise, so that no map is seeded on them.
+    moving.push_back(p.since_evidence <= options_.hold_frames || !speed);
     if (person == nullptr) added.push_back(fresh);
   }
   people_.erase(std::remove_if(people_.begin(), people_.end(),

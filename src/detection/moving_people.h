@@ -4,7 +4,9 @@
 // being a person. Moving when the compensated frame difference covers part of them, or when
 // their centre moves in the world (camera motion removed by the tracked poses) faster than a
 // walk-in-place: the second catches people walking straight toward or away from the camera,
-// whom differencing cannot see. A person judged moving stays so for a while (hysteresis).
+// whom differencing cannot see. A person judged moving stays so for a while (hysteresis). A
+// person whose speed cannot be measured yet (too little past) is judged moving: still is a
+// verdict the geometry has to give, or the first frames would seed the map on a walker.
 
 #include <deque>
 #include <optional>
