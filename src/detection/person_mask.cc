@@ -1,6 +1,7 @@
 #include "detection/person_mask.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -108,6 +109,25 @@ cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const Per
   cv::dilate(silhouette, silhouette, kernel);
   silhouette.copyTo(mask(region));
   return mask;
+}
+
+std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera) {
+  std::array<std::vector<double>, 3> axes;
+  for (int y = 0; y < silhouette.rows; y += 4)
+    for (int x = 0; x < silhouette.cols; x += 4) {
+      const float z = depth.at<float>(y, x);
+      if (silhouette.at<uchar>(y, x) == 0 || z <= 0.0f) continue;
+      const Eigen::Vector3d point = camera.Backproject(Eigen::Vector2d(x, y), z);
+      for (int i = 0; i < 3; ++i) axes[i].push_back(point[i]);
+    }
+  if (axes[0].empty()) return std::nullopt;
+  Eigen::Vector3d centre;
+  for (int i = 0; i < 3; ++i) {
+    std::vector<double>& values = axes[i];
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    centre[i] = values[values.size() / 2];
+  }
+  return centre;
 }
 
 }  // namespace dynvo

@@ -5,7 +5,12 @@
 // shows behind the person (background between the legs, beside the shoulders) stays out of the
 // mask and usable.
 
+#include <optional>
+
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
+
+#include "core/camera.h"
 
 namespace dynvo {
 
@@ -29,5 +34,11 @@ cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const Per
 // `dominance` of the largest mode's depths; 0 when the strip has too few depths
 // (min_depth_share).
 double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOptions& options = {});
+
+// Where the person of `silhouette` (CV_8UC1, 255 = the person, e.g. PersonMaskFromBox's) is, in
+// the camera: the per-axis median of its back-projected pixels that have depth (every 4th row and
+// column), robust to the background and limbs a silhouette takes in or loses as its box changes;
+// nullopt when none has depth.
+std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera);
 
 }  // namespace dynvo

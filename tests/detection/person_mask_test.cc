@@ -71,5 +71,27 @@ TEST(PersonMask, WithoutDepthTheBoxIsTheMask) {
   EXPECT_EQ(cv::countNonZero(PersonMaskFromBox(depth, cv::Rect2d(700, 50, 80, 200))), 0);  // outside the image
 }
 
+TEST(PersonMask, ThePersonsCentreIsNotPulledByTheBackgroundItsSilhouetteTakesIn) {
+  const Scene s = MakeScene();
+  const Camera camera;  // 525 px, centre (319.5, 239.5)
+  // The person's own pixels: centred on x about 320 at 2 m.
+  const std::optional<Eigen::Vector3d> own = PersonCentre(s.person, s.depth, camera);
+  ASSERT_TRUE(own.has_value());
+  EXPECT_NEAR(own->z(), 2.0, 1e-9);
+  EXPECT_NEAR(own->x(), 0.0, 0.05);
+  // A silhouette that also took in a strip of the wall at 4 m beside the person (a quarter of
+  // its pixels, as when a box widens): the centre stays on the person, its depth exact, sideways
+  // a few ranks of the person's own columns. The mean of the pixels would move 0.5 m back and
+  // 0.15 m sideways: a walk's speed over the 0.15 s the speed is measured on.
+  cv::Mat widened = s.person.clone();
+  const int wall = cv::countNonZero(s.person) / 3;
+  widened(cv::Rect(400, 80, wall / 360, 360)).setTo(255);
+  const std::optional<Eigen::Vector3d> centre = PersonCentre(widened, s.depth, camera);
+  ASSERT_TRUE(centre.has_value());
+  EXPECT_NEAR(centre->z(), 2.0, 1e-9);
+  EXPECT_NEAR(centre->x(), own->x(), 0.08);
+  EXPECT_FALSE(PersonCentre(s.person, cv::Mat::zeros(480, 640, CV_32FC1), camera).has_value());  // no depth
+}
+
 }  // namespace
 }  // namespace dynvo
