@@ -31,7 +31,7 @@ struct MovingPeopleOptions {
 struct PersonEvidence {
   cv::Rect2d box;                                   // image pixels
   double difference_share = 0.0;                    // share of the person's mask the geometric mask covers
-  std::optional<Eigen::Vector3d> centre_in_camera;  // mean of the person's back-projected pixels
+  std::optional<Eigen::Vector3d> centre_in_camera;  // PersonCentre of the person's silhouette
 };
 
 class MovingPeople {

@@ -6,6 +6,7 @@
 #include "core/stopwatch.h"
 
 namespace dynvo {
+
 PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector,
                                    const DetectorOptions& options, Executor& executor)
     : camera_(camera), runner_(std::move(detector), executor, options.wait_ms, options.every_frames) {}
