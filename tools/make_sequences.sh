@@ -39,11 +39,15 @@ others=tum_walking
 presets="tum_walking tum_toward tum_away tum_sitting"
 mkdir -p "$out"
 
+labels_still() {  # folder: no masks, or masks that give a person not moving 128 (older ones did not)
+  [ ! -f "$1/masks.txt" ] || grep -qF "128 = " "$1/masks.txt"
+}
+
 synth() {  # name scenario camera_path
   local dir="$out/$1"
   local header="# dynvo synthetic sequence: scenario $2, camera path $3, seed $seed, rolling shutter 28 ms, depth 14 ms early"
   if ! { [ -f "$dir/rgb.txt" ] && grep -qxF "$header" "$dir/rgb.txt" &&
-         [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ]; }; then
+         [ "$(grep -vc '^#' "$dir/rgb.txt")" -eq "$frames" ] && labels_still "$dir"; }; then
     "$bin/dynvo-synth" --scenario "$2" --camera-path "$3" --frames "$frames" --seed "$seed" \
       --kinect-sensor --out "$dir" --force >&2
   fi
@@ -63,7 +67,7 @@ fr1="$shared/data/tum/rgbd_dataset_freiburg1_rpy_head150"
 if [ -d "$fr1" ]; then
   for preset in $presets; do
     people="$out/fr1_rpy_head150_$preset"
-    [ -f "$people/people.txt" ] || "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
+    { [ -f "$people/people.txt" ] && labels_still "$people"; } || "$bin/dynvo-insert-people" --dataset "$fr1" --preset "$preset" \
       --out "$people" --force >&2
     echo "$people"
   done

@@ -209,6 +209,12 @@ RgbdFrame TumDataset::Load(size_t i) const {
 }
 
 cv::Mat TumDataset::LoadMask(size_t i) const {
+  cv::Mat mask = LoadMaskLabels(i);
+  cv::threshold(mask, mask, 0, 255, cv::THRESH_BINARY);
+  return mask;
+}
+
+cv::Mat TumDataset::LoadMaskLabels(size_t i) const {
   const FramePaths& paths = frames_.at(i);
   if (!has_masks_) ThrowFileError(masks_list_, 0, "missing file: this sequence has no masks");
   if (paths.mask < 0)
@@ -219,7 +225,6 @@ cv::Mat TumDataset::LoadMask(size_t i) const {
   cv::Mat mask = ReadPng(entry, masks_list_);
   if (mask.type() != CV_8UC1)
     ThrowFileError((fs::path(folder_) / entry.path).string(), 0, "mask must be 8-bit 1-channel, got " + TypeName(mask));
-  cv::threshold(mask, mask, 0, 255, cv::THRESH_BINARY);
   if (!remap_) return mask;
   cv::Mat undistorted;
   cv::remap(mask, undistorted, nearest_map_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar::all(0));

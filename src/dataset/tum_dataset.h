@@ -17,6 +17,10 @@
 
 namespace dynvo {
 
+// The masks/ value of a generated sequence's pixel showing a person who is not moving (people.txt
+// says who): dynamic for a mask source, static for the mask's precision and recall.
+constexpr unsigned char kStillPersonLabel = 128;
+
 class ConfigRegistry;
 
 struct TumDatasetOptions {
@@ -87,6 +91,9 @@ class TumDataset {
   // of rgb.txt (equal within 0.1 ms). Throws InputError when there is no masks.txt, no entry
   // for the frame, or the PNG is missing, not 8-bit 1 channel or of the wrong size.
   cv::Mat LoadMask(size_t i) const;
+  // Frame i's mask with its PNG values (kStillPersonLabel marks a person standing or sitting
+  // still in the generated sequences), undistorted like LoadMask; throws as LoadMask does.
+  cv::Mat LoadMaskLabels(size_t i) const;
 
   // RGB frames dropped for lack of a depth within max_time_difference.
   size_t unmatched_rgb() const;

@@ -17,7 +17,11 @@ LoadedFrame FrameLoader::LoadOne(size_t index) const {
   const auto start = SteadyClock::now();
   LoadedFrame loaded;
   loaded.frame = dataset_.Load(index);
-  if (with_masks_) loaded.truth_mask = dataset_.LoadMask(index);
+  if (with_masks_) {
+    const cv::Mat labels = dataset_.LoadMaskLabels(index);
+    loaded.truth_mask = labels > 0;
+    loaded.still_people = labels == kStillPersonLabel;
+  }
   loaded.load_ms = MillisecondsSince(start);
   return loaded;
 }

@@ -13,6 +13,7 @@ namespace dynvo {
 struct LoadedFrame {
   RgbdFrame frame;
   cv::Mat truth_mask;    // ground-truth dynamic mask when the sequence has masks
+  cv::Mat still_people;  // of it, the pixels of people not moving (kStillPersonLabel), 255
   double load_ms = 0.0;  // decoding time of the PNGs (and mask)
 };
 

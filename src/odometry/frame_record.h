@@ -51,15 +51,16 @@ struct FrameRecord {
   bool keyframe = false;
   int local_ba_converged = -1;             // a local BA joined the map: 1 converged, 0 stopped at its
                                            // iteration cap; -1 none joined in this frame
-  std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks
-  int people = -1;                         // people the detector found (-1: no detector)
-  int people_moving = -1;                  // of them, judged moving (people refinement; -1: not judged)
-  int detection_age = -1;                  // frames since they were detected (0: this frame; -1: none yet)
-  std::string detection;                   // detected, carried, failed, timed_out ("" : no detector)
-  int lines = -1;                          // line segments kept off the mask (-1: lines off)
-  int lines_matched = 0;                   // of them, matched to map lines
-  int line_inliers = 0;                    // of those, inliers of the final pose
-  int lines_added = 0;                     // map lines this frame's keyframe added
+  std::optional<MaskCounts> mask_quality;  // when the sequence has ground-truth masks: against its moving pixels
+  std::optional<StillFeatureCounts> still_features;  // then also: the features on people not moving
+  int people = -1;                                   // people the detector found (-1: no detector)
+  int people_moving = -1;                            // of them, judged moving (people refinement; -1: not judged)
+  int detection_age = -1;                            // frames since they were detected (0: this frame; -1: none yet)
+  std::string detection;                             // detected, carried, failed, timed_out ("" : no detector)
+  int lines = -1;                                    // line segments kept off the mask (-1: lines off)
+  int lines_matched = 0;                             // of them, matched to map lines
+  int line_inliers = 0;                              // of those, inliers of the final pose
+  int lines_added = 0;                               // map lines this frame's keyframe added
 };
 
 }  // namespace dynvo

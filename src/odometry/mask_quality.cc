@@ -49,4 +49,28 @@ MaskCounts CompareMasks(const cv::Mat& detected, const cv::Mat& truth) {
   return counts;
 }
 
+StillFeatureCounts& StillFeatureCounts::operator+=(const StillFeatureCounts& o) {
+  detected += o.detected;
+  kept += o.kept;
+  return *this;
+}
+
+double StillFeatureCounts::KeptShare() const { return detected == 0 ? 1.0 : static_cast<double>(kept) / detected; }
+
+StillFeatureCounts CountStillFeatures(const FeatureSplit& split, const cv::Mat& still) {
+  CV_Assert(still.type() == CV_8UC1);
+  const auto on_still = [&still](const std::vector<cv::KeyPoint>& keypoints) {
+    long long n = 0;
+    for (const cv::KeyPoint& k : keypoints) {
+      const cv::Point p(cvRound(k.pt.x), cvRound(k.pt.y));
+      n += p.inside(cv::Rect(0, 0, still.cols, still.rows)) && still.at<uchar>(p) != 0;
+    }
+    return n;
+  };
+  StillFeatureCounts counts;
+  counts.kept = on_still(split.kept.keypoints);
+  counts.detected = counts.kept + on_still(split.removed.keypoints);
+  return counts;
+}
+
 }  // namespace dynvo

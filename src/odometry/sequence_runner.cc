@@ -88,6 +88,7 @@ struct RunTally {
   long long people = 0, people_moving = 0, people_still = 0;
   long long features_removed = 0, features_readmitted = 0, new_points_rejected = 0, coherent_motion_rejected = 0;
   MaskCounts mask_total;
+  StillFeatureCounts still_features;
   std::vector<double> mask_iou;
 
   void Add(const FrameRecord& r) {
@@ -116,6 +117,7 @@ struct RunTally {
       mask_total += *r.mask_quality;
       mask_iou.push_back(r.mask_quality->Iou());
     }
+    if (r.still_features) still_features += *r.still_features;
   }
 
   void AddDetector(const FrameRecord& r) {
@@ -215,12 +217,17 @@ void AddRunResults(const RunTally& tally, double wall_s, const RunEnd& end, int 
   if (evaluate_masks && done > 0) {
     double iou_sum = 0;
     for (double v : tally.mask_iou) iou_sum += v;
-    report["mask_quality"] = {{"frames", tally.mask_iou.size()},
-                              {"precision", tally.mask_total.Precision()},
-                              {"recall", tally.mask_total.Recall()},
-                              {"iou", tally.mask_total.Iou()},
-                              {"mean_frame_iou", iou_sum / tally.mask_iou.size()},
-                              {"pooling", "precision, recall and iou over all pixels of all frames"}};
+    report["mask_quality"] = {
+        {"frames", tally.mask_iou.size()},
+        {"precision", tally.mask_total.Precision()},
+        {"recall", tally.mask_total.Recall()},
+        {"iou", tally.mask_total.Iou()},
+        {"mean_frame_iou", iou_sum / tally.mask_iou.size()},
+        {"pooling",
+         "precision, recall and iou over all pixels of all frames; truth: the "
+         "moving pixels (a person not moving counts as static)"},
+        {"still_people",
+         {{"features", tally.still_features.detected}, {"kept_share", tally.still_features.KeptShare()}}}};
   } else {
     report["mask_quality"] = nullptr;
   }
@@ -333,7 +340,10 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     const ProcessedFrame processed = pipeline.Process(current.frame, next, current.truth_mask);
     FrameRecord record = processed.record;
     record.times.load_ms = current.load_ms;
-    if (evaluate_masks) record.mask_quality = CompareMasks(processed.stages.mask.mask, current.truth_mask);
+    if (evaluate_masks) {
+      record.mask_quality = CompareMasks(processed.stages.mask.mask, current.truth_mask & ~current.still_people);
+      record.still_features = CountStillFeatures(processed.stages.features.split, current.still_people);
+    }
     debug_panels.OnFrame(current.frame, processed);
     trajectory.Append(FormatTrajectory({{record.stamp, record.world_from_camera}}));
     timing.Write(record);

@@ -295,7 +295,7 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
   InsertionSummary summary;
   PeopleLabels labels("dynvo-insert-people");
   std::string masks_list =
-      "# dynamic masks (255 = pixel of an inserted person), one per color image\n"
+      "# dynamic masks (255 = pixel of an inserted person, 128 = of one not moving), one per color image\n"
       "# people inserted by dynvo-insert-people into " +
       sequence.name() + "\n# timestamp filename\n";
   for (size_t i = 0; i < pairs.rgb.size(); ++i) {
@@ -322,8 +322,9 @@ InsertionSummary InsertPeopleIntoSequence(const std::string& dataset, const std:
       }
     }
     const cv::Mat mask = person_id > 0;
-    labels.AddFrame(stamp, person_id, mask, MovingAt(plan, stamp));
-    WritePng((out / mask_name).string(), mask);
+    const std::vector<bool> moving = MovingAt(plan, stamp);
+    labels.AddFrame(stamp, person_id, mask, moving);
+    WritePng((out / mask_name).string(), LabelStillPeople(mask, StillPeoplePixels(person_id, moving)));
   }
   WriteText(out / "masks.txt", masks_list);
   labels.Write(out.string());

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "dataset/tum_dataset.h"
 #include "synth/stage_people.h"
 #include "synth/tum_writer.h"
 
@@ -51,6 +52,25 @@ void PeopleLabels::AddFrame(double stamp, const cv::Mat& person_id, const cv::Ma
   line << FormatStamp(stamp) << "," << std::fixed << std::setprecision(5) << share << "," << in_view << ","
        << moving_in_view << "\n";
   stats_ += line.str();
+}
+
+cv::Mat StillPeoplePixels(const cv::Mat& person_id, const std::vector<bool>& moving) {
+  CV_Assert(person_id.type() == CV_16U);
+  cv::Mat still = cv::Mat::zeros(person_id.size(), CV_8U);
+  for (int y = 0; y < person_id.rows; ++y) {
+    const std::uint16_t* id = person_id.ptr<std::uint16_t>(y);
+    uchar* out = still.ptr<uchar>(y);
+    for (int x = 0; x < person_id.cols; ++x)
+      if (id[x] > 0 && id[x] <= moving.size() && !moving[id[x] - 1u]) out[x] = 255;
+  }
+  return still;
+}
+
+cv::Mat LabelStillPeople(const cv::Mat& mask, const cv::Mat& still) {
+  CV_Assert(mask.type() == CV_8U && still.type() == CV_8U && mask.size() == still.size());
+  cv::Mat labelled = mask.clone();
+  labelled.setTo(kStillPersonLabel, still & (mask > 0));
+  return labelled;
 }
 
 void PeopleLabels::Write(const std::string& folder) const {

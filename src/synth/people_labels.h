@@ -31,6 +31,13 @@ class PeopleLabels {
   std::vector<double> coverage_;
 };
 
+// 255 where `person_id` (CV_16U, person k + 1) shows a person k with !moving[k], else 0.
+cv::Mat StillPeoplePixels(const cv::Mat& person_id, const std::vector<bool>& moving);
+
+// `mask` (CV_8U, non-zero = dynamic) with kStillPersonLabel (dataset/tum_dataset.h) where `still`
+// (CV_8U, same size) is non-zero: what a generated sequence writes into masks/.
+cv::Mat LabelStillPeople(const cv::Mat& mask, const cv::Mat& still);
+
 // The median of `values` (0 when empty).
 double MedianOf(std::vector<double> values);
 

@@ -152,6 +152,16 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   frame.world_from_camera = WorldFromCamera(t);
   frame.clean = RenderAt(t);
   frame.mask = frame.clean.object_id > 0;
+  // Where any render of the frame shows a person not moving, and where one shows anything else.
+  const std::vector<bool> moving = MovingAt(t);
+  cv::Mat still = cv::Mat::zeros(frame.mask.size(), CV_8U), others = still.clone();
+  const auto touch = [&](const cv::Mat& object_id) {
+    const cv::Mat still_here = StillPeoplePixels(object_id, moving);
+    frame.mask |= object_id > 0;
+    still |= still_here;
+    others |= (object_id > 0) & ~still_here;
+  };
+  touch(frame.clean.object_id);
   if (options_.motion_blur) {
     const int n = MotionBlurSamples(t);
     cv::Mat sum;
@@ -161,7 +171,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
       const double ts = t + options_.exposure_s * (double(k) / (n - 1) - 0.5);
       const RenderResult sub = RenderAt(ts);  // each row's time shifted alike
       cv::accumulate(sub.bgr, sum);
-      frame.mask |= sub.object_id > 0;  // every pixel a moving object touched
+      touch(sub.object_id);  // every pixel a moving object touched
     }
     sum.convertTo(frame.bgr, CV_8UC3, 1.0 / n);
   } else {
@@ -173,12 +183,13 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
     const double td = DepthSceneTime(index);  // all rows at once: no rolling shutter measured
     const RenderResult at_depth = RenderGlobalAt(td);
     depth_m = at_depth.depth;
-    frame.mask |= at_depth.object_id > 0;  // the people's pixels in either image
+    touch(at_depth.object_id);  // the people's pixels in either image
     const double gain = 1.0 + 0.1 * std::sin(2 * 3.14159265358979323846 * t / 6.1 + options_.seed);
     frame.bgr.convertTo(frame.bgr, CV_8UC3, gain);
   }
   ApplyRgbNoise(options_.noise, frame_seed, &frame.bgr);
   frame.depth16 = MakeSensorDepth(options_.noise, frame_seed + 1u, depth_m);
+  frame.still_people = still & ~others;
   return frame;
 }
 
@@ -218,7 +229,8 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
                     world.MovingAt(frame->rgb_stamp - options.start_stamp));
     if (pending.valid()) pending.Get();  // rethrows a write error
     pending = executor.Submit([&writer, frame] {
-      writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16, frame->mask);
+      writer.AddFrame(frame->rgb_stamp, frame->bgr, frame->depth_stamp, frame->depth16,
+                      LabelStillPeople(frame->mask, frame->still_people));
     });
   }
   if (pending.valid()) pending.Get();

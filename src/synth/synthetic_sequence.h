@@ -75,6 +75,7 @@ struct SyntheticFrame {
   cv::Mat bgr;             // CV_8UC3 with sensor effects
   cv::Mat depth16;         // CV_16U, depth_factor units, 0 = no reading
   cv::Mat mask;            // CV_8U, 255 where a moving object is seen
+  cv::Mat still_people;    // CV_8U, 255 where of them only people not moving (MovingAt) are seen
   RenderResult clean;      // the noise-free render at rgb_stamp, rows at their rolling-shutter
                            // times (depth in metres, ids)
 };

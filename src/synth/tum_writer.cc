@@ -84,8 +84,10 @@ void TumWriter::Finish(const Trajectory& groundtruth, const Camera& camera, doub
   WriteText(folder_ + "/rgb.txt", ListText("color images", comment_, rgb_lines_));
   WriteText(folder_ + "/depth.txt", ListText("depth maps", comment_, depth_lines_));
   if (!mask_lines_.empty())
-    WriteText(folder_ + "/masks.txt",
-              ListText("dynamic masks (255 = pixel of a moving object), one per color image", comment_, mask_lines_));
+    WriteText(
+        folder_ + "/masks.txt",
+        ListText("dynamic masks (255 = pixel of a moving object, 128 = of a person not moving), one per color image",
+                 comment_, mask_lines_));
   WriteText(folder_ + "/groundtruth.txt", "# ground truth trajectory\n# " + comment_ +
                                               "\n# timestamp tx ty tz qx qy qz qw\n" + FormatTrajectory(groundtruth));
   WriteCameraFile(folder_ + "/camera.json", camera, depth_factor);

@@ -166,7 +166,8 @@ TEST(TumDataset, BadListLinesNameFileAndLine) {
   EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }),
                        seq.folder + "/depth.txt:5: timestamps must strictly increase"));
   dir.Write("synthetic/rgb.txt", "# c\n100.0 rgb/a.png\n100.1\n");
-  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt:3: expected 2 columns"));
+  EXPECT_TRUE(
+      Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/rgb.txt:3: expected 2 columns"));
   dir.Write("synthetic/groundtruth.txt", "1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0\n");
   test::WriteList(seq.folder, "rgb.txt", seq.rgb_stamps, seq.rgb_files);
   test::WriteList(seq.folder, "depth.txt", seq.depth_stamps, seq.depth_files);
@@ -276,7 +277,8 @@ TEST(TumDataset, CameraPrecedenceConfigThenFileThenName) {
   EXPECT_EQ(from_named.depth_factor(), 5208.0);
 
   dir.Write(spec.name + "/camera.json", R"({"width":640,"height":480,"fx":500})");
-  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
+  EXPECT_TRUE(
+      Contains(test::InputErrorOf([&] { TumDataset{seq.folder}; }), seq.folder + "/camera.json: missing key 'fy'"));
 
   // A trailing separator does not change the name, hence the camera.
   std::filesystem::remove(seq.folder + "/camera.json");
@@ -433,8 +435,8 @@ TEST(TumDataset, MasksByRgbStamp) {
   TumTestFolderSpec spec;
   spec.frames = 3;
   const TumTestFolder seq = WriteTumTestFolder(dir, spec);
-  EXPECT_TRUE(
-      Contains(test::InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }), seq.folder + "/masks.txt: missing file"));
+  EXPECT_TRUE(Contains(test::InputErrorOf([&] { TumDataset(seq.folder).LoadMask(0); }),
+                       seq.folder + "/masks.txt: missing file"));
 
   cv::Mat mask(480, 640, CV_8UC1, cv::Scalar(0));
   mask(cv::Rect(10, 20, 30, 40)).setTo(255);
@@ -446,6 +448,12 @@ TEST(TumDataset, MasksByRgbStamp) {
   const cv::Mat loaded = dataset.LoadMask(0);
   ASSERT_EQ(loaded.type(), CV_8UC1);
   EXPECT_EQ(cv::norm(loaded, mask, cv::NORM_INF), 0.0);
+  // A generated sequence's still people: dynamic for LoadMask, their own value for LoadMaskLabels.
+  cv::Mat labelled = mask.clone();
+  labelled(cv::Rect(10, 20, 5, 40)).setTo(kStillPersonLabel);
+  test::WriteImage(seq.folder + "/masks/a.png", labelled);
+  EXPECT_EQ(cv::norm(dataset.LoadMask(0), mask, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(dataset.LoadMaskLabels(0), labelled, cv::NORM_INF), 0.0);
   std::string message = test::InputErrorOf([&] { dataset.LoadMask(1); });
   EXPECT_TRUE(Contains(message, seq.folder + "/masks.txt: no mask entry")) << message;
   EXPECT_TRUE(Contains(message, seq.folder + "/rgb.txt:4")) << message;

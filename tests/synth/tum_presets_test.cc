@@ -8,6 +8,9 @@
 #include <sstream>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include "dataset/tum_dataset.h"
 #include "support/shared_data.h"
 #include "support/temp_dir.h"
 #include "synth/people_insertion.h"
@@ -50,6 +53,7 @@ TEST(TumPresets, CoverageInRangeFromFrameZeroWithLabels) {
     // people.txt: one line per person and frame; the stats' coverage adds up the people's pixels.
     std::ifstream people(out / "people.txt");
     std::map<std::string, int> pixels_at;  // stamp -> visible pixels of all people
+    std::map<std::string, int> still_at;   // stamp -> visible pixels of the people not moving
     std::map<std::string, int> states;
     int lines = 0;
     for (std::string line; std::getline(people, line);) {
@@ -60,6 +64,7 @@ TEST(TumPresets, CoverageInRangeFromFrameZeroWithLabels) {
       ASSERT_TRUE(fields >> stamp >> id >> state >> pixels) << line;
       EXPECT_TRUE(state == "moving" || state == "still") << line;
       pixels_at[stamp] += pixels;
+      still_at[stamp] += state == "still" ? pixels : 0;
       ++states[state];
       ++lines;
     }
@@ -83,6 +88,13 @@ TEST(TumPresets, CoverageInRangeFromFrameZeroWithLabels) {
       ++rows;
     }
     EXPECT_EQ(rows, 150);
+    // masks/ marks the people not moving kStillPersonLabel, the others 255.
+    for (const auto& [stamp, pixels] : pixels_at) {
+      const cv::Mat mask = cv::imread((out / "masks" / (stamp + ".png")).string(), cv::IMREAD_UNCHANGED);
+      ASSERT_EQ(mask.type(), CV_8UC1) << stamp;
+      EXPECT_EQ(cv::countNonZero(mask == kStillPersonLabel), still_at[stamp]) << name << " " << stamp;
+      EXPECT_EQ(cv::countNonZero(mask == 255), pixels - still_at[stamp]) << name << " " << stamp;
+    }
   }
 }
 

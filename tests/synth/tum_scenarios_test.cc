@@ -4,14 +4,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "dataset/tum_dataset.h"
+#include "support/temp_dir.h"
 #include "synth/people_labels.h"
 #include "synth/rolling_shutter.h"
 #include "synth/stage_people.h"
 #include "synth/synthetic_sequence.h"
+#include "synth/tum_writer.h"
 
 namespace dynvo {
 namespace {
@@ -48,6 +54,45 @@ TEST(TumScenarios, PeopleInViewFromTheFirstFrameWithTheDeclaredCoverage) {
     const size_t people = scenario == Scenario::kTumWalking || scenario == Scenario::kTumSitting ? 2 : 1;
     EXPECT_EQ(world.MovingAt(1.0).size(), people) << ScenarioName(scenario);
   }
+}
+
+// masks/ gives the pixels of a person who is not moving kStillPersonLabel and those of a moving
+// one 255: per frame, about as many as people.txt gives them.
+TEST(TumScenarios, MasksLabelThePixelsOfPeopleWhoAreStill) {
+  test::TempDir dir;
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kTumSitting);
+  o.frames = 40;
+  const std::string folder = (dir.path() / "seq").string();
+  PrepareOutputFolder(folder, false);
+  WriteSyntheticSequence(o, folder);
+  std::vector<int> still_pixels, moving_pixels;  // per frame, from people.txt (2 people a frame)
+  std::ifstream people(folder + "/people.txt");
+  int line_number = 0;
+  for (std::string line; std::getline(people, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string stamp, state;
+    int id = 0, pixels = 0;
+    ASSERT_TRUE(fields >> stamp >> id >> state >> pixels) << line;
+    if (line_number++ % 2 == 0) still_pixels.push_back(0), moving_pixels.push_back(0);
+    (state == "still" ? still_pixels : moving_pixels).back() += pixels;
+  }
+  const TumDataset dataset(folder);
+  ASSERT_EQ(dataset.size(), still_pixels.size());
+  int frames_with_still = 0, frames_with_moving = 0;
+  for (size_t i = 0; i < dataset.size(); ++i) {
+    const cv::Mat labels = dataset.LoadMaskLabels(i);
+    const int still = cv::countNonZero(labels == kStillPersonLabel), moving = cv::countNonZero(labels == 255);
+    // The mask also takes in the motion blur's and the depth image's renders: a few % more.
+    EXPECT_GE(still, still_pixels[i]) << i;
+    EXPECT_LE(still, 1.05 * still_pixels[i]) << i;
+    EXPECT_GE(moving, moving_pixels[i]) << i;
+    EXPECT_LE(moving, 1.05 * moving_pixels[i]) << i;
+    frames_with_still += still_pixels[i] > 0;
+    frames_with_moving += moving_pixels[i] > 0;
+  }
+  EXPECT_GT(frames_with_still, 30) << "the seated person who never stands is still";
+  EXPECT_GT(frames_with_moving, 5) << "the other stands up";
 }
 
 // Kinect v1's depth image is stamped after the colour image but shows the scene before it,

@@ -20,9 +20,10 @@ COLUMNS = suite.CSV_COLUMNS
 
 
 def row(sequence, config, kind="synthetic", twin="synth_none_xyz_s1", status="ok", frames="60",
-        rpe="-", twin_rpe="-", ratio="-", ate="-", mask=("-", "-", "-"), ms=("-", "-"), split="dev"):
+        rpe="-", twin_rpe="-", ratio="-", ate="-", mask=("-", "-", "-"), still="-", ms=("-", "-"),
+        split="dev"):
     return dict(zip(COLUMNS, [split, sequence, kind, twin, config, status, frames, rpe, twin_rpe,
-                              ratio, ate, *mask, *ms]))
+                              ratio, ate, *mask, still, *ms]))
 
 
 def write_results(path, rows):
@@ -49,7 +50,8 @@ def hand_made_rows(split="dev"):
                         ate="0.05", ms=("10.0", "12.5"), split=split))
         mask = ("0.6", "0.8", "0.5") if name == "a" else ("-", "-", "-")
         rows.append(row(name, "paper", rpe=paper[0], twin_rpe="0.01", ratio=paper[1],
-                        ate="0.04", mask=mask, ms=("20.25", "31.0"), split=split))
+                        ate="0.04", mask=mask, still="0.85" if name == "a" else "-",
+                        ms=("20.25", "31.0"), split=split))
     for config in ("baseline", "paper"):
         rows.append(row("fr2_desk_head50_p_s2", config, kind="inserted", twin="fr2_desk_head50",
                         status=suite.NOT_RUN, frames="-", split=split))
@@ -74,7 +76,8 @@ class Table(unittest.TestCase):
                                    "paper mask R/P/IoU", "baseline ms median/p90",
                                    "paper ms median/p90"])  # no mask column for the baseline
         self.assertEqual(rows[1], ["a", "synth_none_xyz_s1", "0.0200 (2.00x)", "0.0100 (1.00x)",
-                                   "0.0500", "0.0400", "0.80/0.60/0.50", "10.0/12.5", "20.2/31.0"])
+                                   "0.0500", "0.0400", "0.80/0.60/0.50, still 0.85", "10.0/12.5",
+                                   "20.2/31.0"])
         self.assertEqual(rows[2][6], "-")  # paper without a mask quality on b
         self.assertEqual(rows[3][:3], ["fr2_desk_head50_p_s2", "fr2_desk_head50", suite.NOT_RUN])
         self.assertEqual(len(rows[3]), len(rows[0]))
@@ -137,7 +140,7 @@ FAKE_CLI = """#!/bin/sh
 # Fake dynvo-cli run: run.json (mask_quality null for the baseline), trajectory.txt, timing.csv.
 while [ $# -gt 0 ]; do [ "$1" = "--out" ] && out="$2"; [ "$1" = "--config" ] && config="$2"; shift; done
 mkdir -p "$out"
-mask='{"precision": 0.8, "recall": 0.6, "iou": 0.5}'
+mask='{"precision": 0.8, "recall": 0.6, "iou": 0.5, "still_people": {"features": 4, "kept_share": 0.75}}'
 case "$config" in *baseline.json) mask=null ;; esac
 echo '{"dataset": {"frames_to_process": 3}, "mask_quality": '"$mask"'}' > "$out/run.json"
 echo "0 0 0 0 0 0 0 1" > "$out/trajectory.txt"
@@ -197,8 +200,11 @@ class WithFakeBinaries(unittest.TestCase):
         with mock.patch.dict(os.environ, DYNVO_BIN_DIR=self.bin):  # common.bin_dir() reads it
             self.assertTrue(suite.generate(sequence))
             with open(os.path.join(sequence.folder, "spec.json")) as f:
-                self.assertEqual(json.load(f), {"command": list(sequence.command)})
+                self.assertEqual(json.load(f), {"command": list(sequence.command), "format": suite.GENERATED_FORMAT})
             self.assertFalse(suite.generate(sequence))
+            with open(os.path.join(sequence.folder, "spec.json"), "w") as f:  # by the generators of before
+                json.dump({"command": list(sequence.command), "format": suite.GENERATED_FORMAT - 1}, f)
+            self.assertTrue(suite.needs_generation(sequence))
             longer = suite.Sequence("s", sequence.folder,
                                     ("dynvo-synth", "--scenario", "x", "--frames", "6"))
             self.assertTrue(suite.needs_generation(longer))
@@ -212,12 +218,12 @@ class WithFakeBinaries(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(os.path.join(self.tmp.name, "results", "suite_dev.csv")) as f:
             rows = list(csv.DictReader(f))
-        ok = [(r["sequence"], r["config"], r["ratio"], r["mask_iou"], r["ms_p90"])
+        ok = [(r["sequence"], r["config"], r["ratio"], r["mask_iou"], r["still_kept"], r["ms_p90"])
               for r in rows if r["status"] == "ok"]
         scenarios = suite.PRESETS
         paths = ("xyz_s1", "rpy_fast_s4", "xyz_plain_s5")  # the dev split's synthetic camera paths, rooms, seeds
-        self.assertEqual(ok, [("synth_%s_%s" % (s, p), c, "2.0", "-" if c == "baseline" else "0.5", "28.0")
-                              for p in paths for s in scenarios for c in ("baseline", "paper")])
+        self.assertEqual(ok, [("synth_%s_%s" % (s, p), c, "2.0", *(("-", "-") if c == "baseline" else ("0.5", "0.75")),
+                               "28.0") for p in paths for s in scenarios for c in ("baseline", "paper")])
         self.assertEqual([r["sequence"] for r in rows if r["status"] == suite.NOT_RUN],
                          ["fr1_rpy_head150_%s_s1" % p for p in suite.PRESETS for _ in range(2)])
         generated = len(paths) * (len(scenarios) + 1)  # the sequences and their twins

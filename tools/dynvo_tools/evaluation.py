@@ -68,13 +68,20 @@ class EvaluatedRun:
         return int(json_number(self.run_dir, os.path.join(self.run_dir, "run.json"), self.info,
                                "dataset.frames_to_process"))
 
-    def mask_quality(self) -> Optional[dict[str, float]]:
-        """run.json's mask precision, recall and IoU; None without a mask or ground-truth masks."""
+    def mask_quality(self) -> Optional[dict[str, Optional[float]]]:
+        """run.json's mask precision, recall and IoU, and "still_kept": the share of the features
+        on people not moving that the mask left (None when none was detected on one); None
+        without a mask or ground-truth masks."""
         if self.info.get("mask_quality") is None:
             return None
         path = os.path.join(self.run_dir, "run.json")
-        return {key: json_number(self.run_dir, path, self.info, "mask_quality." + key)
-                for key in ("precision", "recall", "iou")}
+        quality: dict[str, Optional[float]] = {
+            key: json_number(self.run_dir, path, self.info, "mask_quality." + key)
+            for key in ("precision", "recall", "iou")}
+        still = json_number(self.run_dir, path, self.info, "mask_quality.still_people.features")
+        quality["still_kept"] = (json_number(self.run_dir, path, self.info, "mask_quality.still_people.kept_share")
+                                 if still > 0 else None)
+        return quality
 
     def processing_ms(self) -> tuple[float, float]:
         """Median and p90 of timing.csv's processing_ms (ms per frame)."""

@@ -83,6 +83,10 @@ SOURCES = (
 )
 
 
+# What the generators write, beyond their arguments: 2 = masks/ gives a person not moving 128.
+GENERATED_FORMAT = 2
+
+
 @dataclass(frozen=True)
 class Sequence:
     """A sequence folder and what makes it: a generator and its arguments (without --out), or
@@ -93,7 +97,7 @@ class Sequence:
 
     def spec(self) -> dict:
         """What spec.json beside the generated sequence holds: a change means generate again."""
-        return {"command": list(self.command)}
+        return {"command": list(self.command), "format": GENERATED_FORMAT}
 
 
 @dataclass(frozen=True)
@@ -112,7 +116,7 @@ class RunResult:
     frames: int
     rpe_m_s: float                  # per-second RPE, translational RMSE
     ate_m: float                    # ATE, SE(3)-aligned RMSE
-    mask: Optional[dict[str, float]]  # precision, recall, iou; None: no mask or no masks/
+    mask: Optional[dict[str, Optional[float]]]  # precision, recall, iou, still_kept; None: no mask or no masks/
     ms_median: float
     ms_p90: float
 
@@ -210,7 +214,7 @@ def run_sequence(sequence: Sequence, config: str, out_dir: str, overrides: tuple
 
 CSV_COLUMNS = ("split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
                "twin_rpe_m_s", "ratio", "ate_m", "mask_precision", "mask_recall", "mask_iou",
-               "ms_median", "ms_p90", "overrides")
+               "still_kept", "ms_median", "ms_p90", "overrides")
 MASK_KEYS = ("precision", "recall", "iou")
 
 
@@ -236,6 +240,7 @@ def result_row(row: RowSpec, config: str, result: Optional[RunResult],
                   ratio=result.rpe_m_s / twin.rpe_m_s if twin.rpe_m_s > 0 else None)
     for key in MASK_KEYS:
         values["mask_" + key] = result.mask[key] if result.mask else None
+    values["still_kept"] = result.mask["still_kept"] if result.mask else None
     return {key: cell(values.get(key)) for key in CSV_COLUMNS}
 
 
@@ -258,7 +263,8 @@ def read_results(path: str) -> list[dict[str, str]]:
         with open(path, newline="") as f:
             reader = csv.DictReader(f)
             rows = list(reader)
-            missing = [c for c in CSV_COLUMNS if c != "overrides" and c not in (reader.fieldnames or [])]
+            missing = [c for c in CSV_COLUMNS
+                       if c not in ("overrides", "still_kept") and c not in (reader.fieldnames or [])]
     except OSError as error:
         raise table_error(path, "cannot read (%s): run the suite first" % error.strerror) from None
     if missing:
@@ -300,8 +306,10 @@ def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
         " the same camera path, seed and Kinect sensor timing with `--scenario none"
         " --kinect-sensor`). **ATE**: SE(3)-aligned RMSE in m"
         " (`ate GT EST`, Horn alignment, no scale). **mask R/P/IoU**: recall, precision and IoU"
-        " of the dynamic mask against the generated masks, over all pixels of all frames (`-`:"
-        " none). **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
+        " of the dynamic mask against the moving people of the generated masks (a person not"
+        " moving counts as static), over all pixels of all frames (`-`: none); **still** after"
+        " them, where people are not moving: the share of the features on them the mask left to"
+        " the pose. **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
         "Frames: %s." % ("; ".join(frames) if frames else "none run"),
     ]
     overrides = sorted({r.get("overrides", "-") for r in rows} - {"-", ""})
@@ -335,7 +343,9 @@ def sequence_cells(by_config: dict[str, dict[str, str]], configs: list[str], mas
     for c in masked:
         values = [num(c, "mask_" + key) for key in ("recall", "precision", "iou")]
         known = [v for v in values if v is not None]
-        cells.append("/".join("%.2f" % v for v in known) if len(known) == len(values) else "-")
+        still = num(c, "still_kept") if "still_kept" in by_config.get(c, {}) else None
+        cells.append(("/".join("%.2f" % v for v in known) if len(known) == len(values) else "-")
+                     + ("" if still is None else ", still %.2f" % still))
     cells += ["%s/%s" % (fmt(num(c, "ms_median"), "%.1f"), fmt(num(c, "ms_p90"), "%.1f"))
               for c in configs]
     return cells
