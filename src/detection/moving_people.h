@@ -19,7 +19,7 @@
 namespace dynvo {
 
 struct MovingPeopleOptions {
-  double min_difference_share = 0.15;  // moving: the geometric mask covers this share of the person ...
+  double min_difference_share = 0.15;  // moving: the frame difference covers this share of the person ...
   double min_speed_m_s = 0.3;          // ... or their centre moves this fast in the world
   double speed_window_s = 0.3;         // the speed is measured over this much of the person's past
   int hold_frames = 15;                // a moving person stays moving this many frames after the last evidence
@@ -30,7 +30,7 @@ struct MovingPeopleOptions {
 // One detected person in frame t.
 struct PersonEvidence {
   cv::Rect2d box;                                   // image pixels
-  double difference_share = 0.0;                    // share of the person's mask the geometric mask covers
+  double difference_share = 0.0;                    // share of the person's mask the frame difference covers
   std::optional<Eigen::Vector3d> centre_in_camera;  // PersonCentre of the person's silhouette
 };
 

@@ -35,6 +35,14 @@ void MaskPacket::Join(const cv::Mat& region) {
   mask = MaskUnion(mask, region);
 }
 
+void MaskPacket::Remove(const cv::Mat& region) {
+  if (mask.empty() || region.empty()) return;
+  CV_Assert(region.type() == CV_8UC1 && region.size() == mask.size());
+  if (cv::countNonZero(mask & region) == 0) return;
+  refined = true;
+  mask = mask & ~region;  // a new image: the source's intermediate images may share the old one
+}
+
 void MaskPacket::TakePeople(DetectionOutcome outcome, const cv::Size& image, CarriedDetections* carried) {
   detection = outcome.status;
   detector_ms = outcome.detector_ms;

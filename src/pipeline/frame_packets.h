@@ -40,6 +40,7 @@ struct MaskPacket {
   MaskStatus status = MaskStatus::kOff;
   std::string failure;                             // kFailed: why; with a detector: its failure or time-out
   cv::Mat mask;                                    // CV_8UC1, 255 = dynamic; empty = no mask
+  cv::Mat source_mask;                             // `mask` as the source gave it, before the refinements
   double dynamic_ratio = 0.0;                      // share of `mask`'s pixels
   int threshold = -1;                              // grey level the forward difference was binarised at (kComputed)
   std::vector<Detection> people;                   // kDetected: the detector's boxes, best first
@@ -65,6 +66,9 @@ struct MaskPacket {
   void SetMotion(const std::optional<Eigen::Matrix3d>& motion);
   // Adds `region` (same size, CV_8UC1) to the mask; marks the mask refined unless it is empty.
   void Join(const cv::Mat& region);
+  // Takes `region` (same size, CV_8UC1) out of the mask; marks the mask refined when that
+  // changed it.
+  void Remove(const cv::Mat& region);
   // The frame's people from a detection `outcome` (its status, time and failure recorded): the
   // detected ones, else the last ones of `carried` moved by this packet's motion into an
   // `image`-sized frame. Sets `people` and `detection_age`.

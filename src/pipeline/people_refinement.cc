@@ -25,17 +25,18 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   for (const Detection& person : people) {
     cv::Mat silhouette = PersonMaskFromBox(frame.depth, person.box, person_mask_);
     const int pixels = cv::countNonZero(silhouette);
+    const cv::Mat& differencing = mask->source_mask;  // the person's own motion, not what they hide
     const double share =
-        pixels > 0 && !mask->mask.empty() ? cv::countNonZero(silhouette & mask->mask) / double(pixels) : 0.0;
+        pixels > 0 && !differencing.empty() ? cv::countNonZero(silhouette & differencing) / double(pixels) : 0.0;
     evidence.push_back({person.box, share, PersonCentre(silhouette, frame.depth, camera_)});
     silhouettes.push_back(std::move(silhouette));
   }
   const std::vector<bool> moving = moving_.Judge(
       evidence, mask->has_motion ? std::optional<Eigen::Matrix3d>(mask->current_from_previous) : std::nullopt);
-  for (size_t i = 0; i < people.size(); ++i) {
-    if (!moving[i]) continue;
-    mask->Join(silhouettes[i]);
-  }
+  for (size_t i = 0; i < people.size(); ++i)
+    if (!moving[i]) mask->Remove(silhouettes[i]);
+  for (size_t i = 0; i < people.size(); ++i)
+    if (moving[i]) mask->Join(silhouettes[i]);
   mask->people_moving = moving;
   mask->ms += MillisecondsSince(start);
 }

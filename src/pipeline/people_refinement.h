@@ -2,8 +2,10 @@
 // The person detector as a refinement of the differencing mask: the people a detector finds
 // (detection/yolo_detector.h), each cut to its silhouette by depth (detection/person_mask.h),
 // join the mask when they are judged moving from geometry (detection/moving_people.h: the
-// differencing covers part of them, or they move in the world); people judged still keep their
-// features. What differencing finds without a detection (movers that are not people) stays.
+// source's differencing, before the other refinements, covers part of them, or they move in the
+// world). People judged still keep their features: they are taken out of the mask, since what
+// the other refinements found on them (the map they hide as the camera moves) is them standing
+// there. What differencing finds without a detection (movers that are not people) stays.
 // The detection of frame t+1 runs on the executor while frame t is tracked; with
 // detector.every_frames = k only every k-th frame is detected, and the frames between carry the
 // last people by the mask's homography.

@@ -1,8 +1,10 @@
 // The people refinement with a scripted detector on a panning camera (-6 px a frame): with
 // detector.every_frames = 3 only frames 0 and 3 are detected, and frames 1 and 2 carry the box
-// by the differencing's homography, with its age.
+// by the differencing's homography, with its age. A person standing still is taken out of the
+// mask that other refinements grew over them; one the differencing covers stays in it.
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -49,6 +51,46 @@ TEST(PeopleRefinement, DetectsEveryKthFrameAndCarriesThePeopleBetween) {
     EXPECT_NEAR(packet.people[0].box.width, 80.0, 0.5) << "frame " << i;
   }
   EXPECT_EQ(calls, 2);
+}
+
+// Frame i of the pan with a person 1 m away standing still in the scripted box, and the mask a
+// refinement before the people's grew over them (as the map occlusion does on a person hiding
+// the map); the differencing (the source's mask) covers `differenced` of their rows.
+std::pair<RgbdFrame, MaskPacket> StandingPerson(int i, double differenced) {
+  RgbdFrame frame = test::PanningFrame(i, false);
+  const cv::Rect person(310, 110, 60, 180);  // inside the box (300, 100, 80 x 200)
+  frame.depth(person).setTo(1.0f);
+  MaskPacket packet = DifferencingOf(i);
+  packet.source_mask = packet.mask.clone();
+  packet.source_mask(cv::Rect(person.x, person.y, person.width, int(person.height * differenced))).setTo(255);
+  packet.mask = packet.source_mask.clone();
+  packet.mask(person).setTo(255);
+  return {frame, packet};
+}
+
+TEST(PeopleRefinement, APersonJudgedStillLeavesTheMaskOneTheDifferencingCoversStays) {
+  for (double differenced : {0.0, 0.5}) {
+    int calls = 0;
+    Executor executor(0);
+    PeopleRefinement refinement(Camera{}, std::make_unique<test::ScriptedDetector>(&calls, std::vector<int>{}),
+                                DetectorOptions{}, executor);
+    TrackingResult tracked;
+    tracked.state = TrackingState::kTracking;  // a camera still in the world: the person is still
+    for (int i = 0; i < 10; ++i) {
+      auto [frame, packet] = StandingPerson(i, differenced);
+      refinement.Begin(frame);
+      refinement.Refine(frame, &packet);
+      refinement.Observe(frame, tracked, LocalMap());
+      ASSERT_TRUE(packet.people_moving.has_value());
+      ASSERT_EQ(packet.people_moving->size(), 1u);
+      const bool moving = (*packet.people_moving)[0];
+      const int masked = cv::countNonZero(packet.mask(cv::Rect(310, 110, 60, 180)));
+      // Too little past in the first 0.15 s: moving, and the whole person masked.
+      const bool expect_moving = differenced > 0.0 || i < 6;
+      EXPECT_EQ(moving, expect_moving) << differenced << " frame " << i;
+      EXPECT_EQ(masked, expect_moving ? 60 * 180 : 0) << differenced << " frame " << i;
+    }
+  }
 }
 
 }  // namespace
