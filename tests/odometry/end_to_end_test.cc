@@ -331,20 +331,30 @@ void ExpectDetectedEvery(const std::string& dir, size_t k, size_t frames) {
   }
 }
 
+// The overrides that give a config the shared Yolo-Fastest body model in `shared`.
+std::vector<std::string> SharedDetector(const std::string& shared) {
+  return {"detector.model=\"" + shared + "/models/yolo-fastest-1.1_body.weights\"",
+          "detector.config=\"" + shared + "/models/yolo-fastest-1.1_body.cfg\""};
+}
+
+// A TUM scenario of the generator, `frames` long on the xyz camera path (seed 1), in `folder`.
+std::string TumScenario(Scenario scenario, int frames, const std::filesystem::path& folder) {
+  SyntheticSequenceOptions options;
+  options.scenario = scenario;
+  options.camera_path = CameraPathPreset::kXyz;
+  options.frames = frames;
+  options.seed = 1;
+  return test::WriteGeneratedSequence(options, folder);
+}
+
 // Two articulated photo people walking 1-3 m from the camera, in view from the first frame (the
 // TUM scenario of the generator), found by the shared Yolo-Fastest body model: on every frame
 // (ipl.json), on every second (dynvo.json) or every third.
 TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
   DYNVO_REQUIRE_SHARED(shared);
   test::TempDir dir;
-  SyntheticSequenceOptions options;
-  options.scenario = Scenario::kTumWalking;
-  options.camera_path = CameraPathPreset::kXyz;
-  options.frames = 90;
-  options.seed = 1;
-  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
-  const std::vector<std::string> model = {"detector.model=\"" + shared + "/models/yolo-fastest-1.1_body.weights\"",
-                                          "detector.config=\"" + shared + "/models/yolo-fastest-1.1_body.cfg\""};
+  const std::string sequence = TumScenario(Scenario::kTumWalking, 90, dir.path() / "sequence");
+  const std::vector<std::string> model = SharedDetector(shared);
   const std::string ahead = (dir.path() / "ahead").string(), in_turn = (dir.path() / "in_turn").string();
   RunOn(sequence, "ipl.json", ahead, model, 3);
   RunOn(sequence, "ipl.json", in_turn, model, 1);
@@ -414,14 +424,8 @@ TEST(DetectorEndToEnd, MasksThePeopleOnEveryFrameAndThreadsChangeNoResult) {
 TEST(DetectorEndToEnd, PeopleSittingStillKeepTheirFeatures) {
   DYNVO_REQUIRE_SHARED(shared);
   test::TempDir dir;
-  SyntheticSequenceOptions options;
-  options.scenario = Scenario::kTumSitting;
-  options.camera_path = CameraPathPreset::kXyz;
-  options.frames = 150;
-  options.seed = 1;
-  const std::string sequence = test::WriteGeneratedSequence(options, dir.path() / "sequence");
-  const std::vector<std::string> model = {"detector.model=\"" + shared + "/models/yolo-fastest-1.1_body.weights\"",
-                                          "detector.config=\"" + shared + "/models/yolo-fastest-1.1_body.cfg\""};
+  const std::string sequence = TumScenario(Scenario::kTumSitting, 150, dir.path() / "sequence");
+  const std::vector<std::string> model = SharedDetector(shared);
   const std::string fused = (dir.path() / "fused").string(), ipl = (dir.path() / "ipl").string();
   RunOn(sequence, "dynvo.json", fused, model, 0);
   RunOn(sequence, "ipl.json", ipl, model, 0);
