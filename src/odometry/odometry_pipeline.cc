@@ -94,7 +94,7 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   // 1. The dynamic mask: its source, then the refinements.
   out.mask = mask_source_->Compute({frame, next, truth_mask, last_mask_});
   if (next != nullptr) mask_source_->LookAhead(frame, *next);
-  out.mask.source_mask = out.mask.mask.clone();
+  out.mask.source_mask = out.mask.mask;  // shared: the refinements replace the mask, never write into it
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->Refine(frame, &out.mask);
   if (out.mask.refined) out.mask.dynamic_ratio = DynamicRatio(out.mask.mask);
   last_mask_ = out.mask.mask;

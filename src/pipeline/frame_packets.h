@@ -40,7 +40,7 @@ struct MaskPacket {
   MaskStatus status = MaskStatus::kOff;
   std::string failure;                             // kFailed: why; with a detector: its failure or time-out
   cv::Mat mask;                                    // CV_8UC1, 255 = dynamic; empty = no mask
-  cv::Mat source_mask;                             // `mask` as the source gave it, before the refinements
+  cv::Mat source_mask;                             // `mask` as the source gave it, before the refinements (shared)
   double dynamic_ratio = 0.0;                      // share of `mask`'s pixels
   int threshold = -1;                              // grey level the forward difference was binarised at (kComputed)
   std::vector<Detection> people;                   // kDetected: the detector's boxes, best first

@@ -19,7 +19,8 @@ class MaskRefinement {
   virtual void Begin(const RgbdFrame& /*frame*/) {}
   // Frame t+1 is loaded and frame t's mask is done: work on frame t+1 may start (executor).
   virtual void LookAhead(const RgbdFrame& /*next*/) {}
-  // Changes frame t's mask (or its seeds); adds its wall time to `mask->ms`.
+  // Changes frame t's mask (or its seeds); adds its wall time to `mask->ms`. A changed mask is a
+  // new image (`mask->mask` is replaced, never written into: `mask->source_mask` shares it).
   virtual void Refine(const RgbdFrame& frame, MaskPacket* mask) = 0;
   // Frame t was tracked (`tracking`, the local map `map` after it).
   virtual void Observe(const RgbdFrame& frame, const TrackingResult& tracking, const LocalMap& map) = 0;

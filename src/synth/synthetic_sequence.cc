@@ -151,10 +151,11 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
   const double t = frame.rgb_stamp - options_.start_stamp;
   frame.world_from_camera = WorldFromCamera(t);
   frame.clean = RenderAt(t);
-  frame.mask = frame.clean.object_id > 0;
-  // Where any render of the frame shows a person not moving, and where one shows anything else.
+  // Every pixel any render of the frame shows a moving object at; of them, where one shows a
+  // person not moving, and where one shows anything else.
   const std::vector<bool> moving = MovingAt(t);
-  cv::Mat still = cv::Mat::zeros(frame.mask.size(), CV_8U), others = still.clone();
+  frame.mask = cv::Mat::zeros(frame.clean.object_id.size(), CV_8U);
+  cv::Mat still = frame.mask.clone(), others = frame.mask.clone();
   const auto touch = [&](const cv::Mat& object_id) {
     const cv::Mat still_here = StillPeoplePixels(object_id, moving);
     frame.mask |= object_id > 0;
@@ -171,7 +172,7 @@ SyntheticFrame SyntheticWorld::RenderFrame(int index) const {
       const double ts = t + options_.exposure_s * (double(k) / (n - 1) - 0.5);
       const RenderResult sub = RenderAt(ts);  // each row's time shifted alike
       cv::accumulate(sub.bgr, sum);
-      touch(sub.object_id);  // every pixel a moving object touched
+      touch(sub.object_id);
     }
     sum.convertTo(frame.bgr, CV_8UC3, 1.0 / n);
   } else {
