@@ -140,40 +140,6 @@ struct DetectionSetup {
   ImageArea area;                    // scaled to the level
 };
 
-// Frame t's corners: klt.max_corners anywhere, and with known movers in frame t-1 as many
-// again off them (those not found already), so that the static scene has its share of tracks
-// even where what moves has most of the texture.
-std::vector<cv::Point2f> HomographyCorners(const TrackingPyramid& current, const DynamicMaskInput& input,
-                                           const KltOptions& klt) {
-  std::vector<cv::Point2f> corners = DetectCorners(current, klt);
-  if (input.previous_movers.empty()) return corners;
-  if (input.previous_movers.type() != CV_8UC1 || input.previous_movers.size() != current.size)
-    throw InputError("DetectDynamicMask: previous_movers must be CV_8UC1 of the frames' size");
-  const size_t anywhere = corners.size();
-  for (const cv::Point2f& extra : DetectCorners(current, klt, input.previous_movers)) {
-    const auto same = [&extra](const cv::Point2f& c) {
-      return std::abs(c.x - extra.x) + std::abs(c.y - extra.y) < 1.0f;
-    };
-    if (std::none_of(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(anywhere), same))
-      corners.push_back(extra);
-  }
-  return corners;
-}
-
-// The tracks whose frame t-1 end (`previous`; by_previous = false: frame t end) lies off
-// `movers`, when at least `enough` are; else all of them.
-PointTracks TracksOffMovers(const PointTracks& tracks, const cv::Mat& movers, bool by_previous, int enough) {
-  if (movers.empty()) return tracks;
-  PointTracks kept;
-  const std::vector<uint8_t> flags = StaticPointFlags(movers, by_previous ? tracks.previous : tracks.current);
-  for (size_t i = 0; i < flags.size(); ++i) {
-    if (!flags[i]) continue;
-    kept.previous.push_back(tracks.previous[i]);
-    kept.current.push_back(tracks.current[i]);
-  }
-  return static_cast<int>(kept.current.size()) >= enough ? kept : tracks;
-}
-
 // Step 1: corners once in frame t, tracked into t-1 (unless given) and t+1; the level images.
 DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions& klt, const DynamicMaskOptions& options,
                                 DynamicMaskResult* result) {
@@ -189,7 +155,7 @@ DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions&
       tracks_given ? input.previous_pyramid
                    : PyramidOf(input.previous_gray, input.previous_pyramid, klt, &built_previous);
   const std::vector<cv::Point2f> corners =
-      (!tracks_given || s.use_next) ? HomographyCorners(current_pyramid, input, klt) : std::vector<cv::Point2f>();
+      (!tracks_given || s.use_next) ? DetectCorners(current_pyramid, klt) : std::vector<cv::Point2f>();
   s.forward_tracks =
       tracks_given ? input.previous_tracks : TracksIntoFrameT(current_pyramid, previous_pyramid, corners, klt);
   s.level = options.difference_level;
@@ -326,9 +292,8 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
   result.mask = cv::Mat::zeros(size, CV_8UC1);
   const DetectionSetup setup = PrepareDetection(input, klt, options, &result);
   RoundState state;
-  // Round 1 fits the tracks off frame t-1's known movers; the later rounds all those off its mask.
-  state.static_forward = TracksOffMovers(setup.forward_tracks, input.previous_movers, true, homography.min_inliers);
-  state.static_next = TracksOffMovers(setup.next_tracks, input.previous_movers, false, homography.min_inliers);
+  state.static_forward = setup.forward_tracks;
+  state.static_next = setup.next_tracks;
   for (int round = 1; round <= options.rounds; ++round) {
     const RoundEnd end = DetectRound(round, setup, homography, options, executor, &state, &result);
     if (end == RoundEnd::kFailed) return result;

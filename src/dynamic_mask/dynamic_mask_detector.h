@@ -26,12 +26,6 @@ struct DynamicMaskInput {
   // Optional tracks t-1 -> t (previous = frame t-1 point, current = frame t point), e.g. the last
   // call's DynamicMaskResult::next_tracks under kTriplet; when given, t is not tracked into t-1 again.
   PointTracks previous_tracks;
-  // Optional CV_8UC1 mask of what is known to move in frame t-1, from evidence other than this
-  // differencing (e.g. the people a detector found there, judged moving): more of frame t's
-  // corners are detected off it, and the first round's homography fits only the tracks off it,
-  // so that it follows the static scene even where what moves has most of the texture (a person
-  // before a plain wall).
-  cv::Mat previous_movers;
   // The part of every frame with image data (e.g. without the black border of undistortion); pixels
   // outside it in either frame of a difference are never dynamic. Empty = the whole image.
   ImageArea image_area;
@@ -60,8 +54,6 @@ struct DynamicMaskResult {
 // The paper's detector: KLT tracks -> homography -> compensated differencing forward (and backward) -> fused mask;
 // then tracks inside the mask's regions are dropped, H re-estimated from the static ones and the mask recomputed,
 // `rounds` times. Corners are detected once in frame t and tracked into t-1 (and t+1 for kTriplet).
-// With input.previous_movers, as many corners again are detected off them, and round 1 fits the
-// tracks off them (all tracks when fewer than homography.min_inliers are).
 // Bad images or options throw InputError; too few tracks or a degenerate fit give ok = false with the reason.
 // kTriplet without a next frame detects forward only (backward_failure says so). Deterministic:
 // with `executor`, the forward direction runs on it beside the backward one (same result).

@@ -92,13 +92,12 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   features_.Begin(frame);  // ORB on the executor, beside the mask
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->Begin(frame);
   // 1. The dynamic mask: its source, then the refinements.
-  out.mask = mask_source_->Compute({frame, next, truth_mask, last_mask_, last_moving_people_});
+  out.mask = mask_source_->Compute({frame, next, truth_mask, last_mask_});
+  if (next != nullptr) mask_source_->LookAhead(frame, *next);
   out.mask.source_mask = out.mask.mask;  // shared: the refinements replace the mask, never write into it
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->Refine(frame, &out.mask);
   if (out.mask.refined) out.mask.dynamic_ratio = DynamicRatio(out.mask.mask);
   last_mask_ = out.mask.mask;
-  last_moving_people_ = out.mask.moving_people;
-  if (next != nullptr) mask_source_->LookAhead(frame, last_moving_people_, *next);
   // 2. The features minus those on the mask (refilled off it).
   out.features = features_.Finish(frame, out.mask);
   if (next != nullptr) {

@@ -75,7 +75,6 @@ class OdometryPipeline {
   LocalMapper mapper_;
   std::unique_ptr<LoopCloser> loop_closer_;  // slam mode
   cv::Mat last_mask_;                        // frame t-1's final mask
-  cv::Mat last_moving_people_;               // frame t-1's people judged moving (MaskPacket::moving_people)
 };
 
 // The timing.csv row of a processed frame.

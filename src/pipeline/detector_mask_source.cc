@@ -11,8 +11,7 @@ DetectorMaskSource::DetectorMaskSource(std::unique_ptr<PersonDetector> detector,
                                        const KltOptions& klt, const HomographyOptions& homography, Executor& executor)
     : motion_(klt, homography), runner_(std::move(detector), executor, options.wait_ms, options.every_frames) {}
 
-void DetectorMaskSource::LookAhead(const RgbdFrame& /*current*/, const cv::Mat& /*moving_people*/,
-                                   const RgbdFrame& next) {
+void DetectorMaskSource::LookAhead(const RgbdFrame& /*current*/, const RgbdFrame& next) {
   runner_.StartOn(next.index, next.bgr);
 }
 

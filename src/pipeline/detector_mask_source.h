@@ -35,7 +35,7 @@ class DetectorMaskSource : public MaskSource {
   // and the union of their masks (empty: nobody); a detector failure or time-out is in
   // `failure`, with the last boxes carried.
   MaskPacket Compute(const MaskSourceInput& input) override;
-  void LookAhead(const RgbdFrame& current, const cv::Mat& moving_people, const RgbdFrame& next) override;
+  void LookAhead(const RgbdFrame& current, const RgbdFrame& next) override;
 
  private:
   PersonMaskOptions person_mask_;

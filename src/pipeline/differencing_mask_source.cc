@@ -7,33 +7,26 @@
 #include "core/stopwatch.h"
 
 namespace dynvo {
-namespace {
-
-// SameImage, or both empty (a frame without moving people).
-bool SameMask(const cv::Mat& a, const cv::Mat& b) { return (a.empty() && b.empty()) || SameImage(a, b); }
-
-}  // namespace
-
 DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography,
                                                const DynamicMaskOptions& options, const ImageArea& image_area,
                                                Executor& executor)
     : klt_(klt), homography_(homography), options_(options), image_area_(image_area), executor_(executor) {}
 
-DynamicMaskInput DifferencingMaskSource::InputFor(const RgbdFrame& frame, const PreviousFrame& previous) const {
+DynamicMaskInput DifferencingMaskSource::InputFor(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                  const TrackingPyramid& previous_pyramid) const {
   DynamicMaskInput input;
-  input.previous_gray = previous.gray;
+  input.previous_gray = previous_gray;
   input.current_gray = frame.gray;
-  input.previous_pyramid = previous.pyramid;
-  input.previous_movers = previous.moving_people;
+  input.previous_pyramid = previous_pyramid;
   input.image_area = image_area_;
   return input;
 }
 
-DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame& frame,
-                                                                 const PreviousFrame& previous) const {
+DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                                                                 const TrackingPyramid& previous_pyramid) const {
   Detection detection;
   const auto start = SteadyClock::now();
-  DynamicMaskInput input = InputFor(frame, previous);
+  DynamicMaskInput input = InputFor(frame, previous_gray, previous_pyramid);
   input.current_pyramid = BuildTrackingPyramid(frame.gray, klt_);
   detection.result = DetectDynamicMask(input, klt_, homography_, options_, &executor_);
   detection.pyramid = input.current_pyramid;
@@ -44,7 +37,7 @@ DifferencingMaskSource::Detection DifferencingMaskSource::Detect(const RgbdFrame
 DifferencingMaskSource::Detection DifferencingMaskSource::DetectTriplet(const RgbdFrame& frame, const RgbdFrame* next) {
   Detection detection;
   const auto start = SteadyClock::now();
-  DynamicMaskInput input = InputFor(frame, previous_);
+  DynamicMaskInput input = InputFor(frame, previous_gray_, previous_pyramid_);
   // Frame t's pyramid was built last call when frame t came as the triplet's next frame.
   const bool came_as_next = SameImage(next_gray_, frame.gray);
   input.current_pyramid = came_as_next ? next_pyramid_ : BuildTrackingPyramid(frame.gray, klt_);
@@ -62,13 +55,10 @@ DifferencingMaskSource::Detection DifferencingMaskSource::DetectTriplet(const Rg
   return detection;
 }
 
-bool DifferencingMaskSource::TakeLookAhead(const RgbdFrame& frame, const cv::Mat& previous_moving_people,
-                                           Detection* detection) {
+bool DifferencingMaskSource::TakeLookAhead(const RgbdFrame& frame, Detection* detection) {
   if (!ahead_.valid()) return false;
-  const bool for_this_frame =
-      SameImage(ahead_gray_, frame.gray) && SameMask(ahead_moving_people_, previous_moving_people);
+  const bool for_this_frame = SameImage(ahead_gray_, frame.gray);
   ahead_gray_.release();
-  ahead_moving_people_.release();
   if (!for_this_frame) {
     ahead_.Reset();  // another frame came instead: its result, or its error, is dropped
     return false;
@@ -81,23 +71,21 @@ MaskPacket DifferencingMaskSource::Compute(const MaskSourceInput& input) {
   const RgbdFrame& frame = input.frame;
   MaskPacket packet;
   packet.frame = frame.index;
-  if (previous_.gray.empty()) {
+  if (previous_gray_.empty()) {
     const auto start = SteadyClock::now();
-    previous_.pyramid = BuildTrackingPyramid(frame.gray, klt_);  // for the next call
-    previous_.gray = frame.gray;
+    previous_pyramid_ = BuildTrackingPyramid(frame.gray, klt_);  // for the next call
+    previous_gray_ = frame.gray;
     packet.status = MaskStatus::kFirstFrame;
     packet.ms = MillisecondsSince(start);
     return packet;
   }
-  previous_.moving_people = input.previous_moving_people;
   Detection detection;
   if (options_.backward == BackwardMode::kTriplet)
     detection = DetectTriplet(frame, input.next);
-  else if (!TakeLookAhead(frame, input.previous_moving_people, &detection))
-    detection = Detect(frame, previous_);
-  previous_.pyramid = std::move(detection.pyramid);
-  previous_.gray = frame.gray;
-  previous_.moving_people.release();
+  else if (!TakeLookAhead(frame, &detection))
+    detection = Detect(frame, previous_gray_, previous_pyramid_);
+  previous_pyramid_ = std::move(detection.pyramid);
+  previous_gray_ = frame.gray;
 
   DynamicMaskResult& result = detection.result;
   packet.ms = detection.ms;
@@ -117,14 +105,13 @@ MaskPacket DifferencingMaskSource::Compute(const MaskSourceInput& input) {
   return packet;
 }
 
-void DifferencingMaskSource::LookAhead(const RgbdFrame& current, const cv::Mat& moving_people, const RgbdFrame& next) {
-  if (options_.backward == BackwardMode::kTriplet || !SameImage(previous_.gray, current.gray)) return;
+void DifferencingMaskSource::LookAhead(const RgbdFrame& current, const RgbdFrame& next) {
+  if (options_.backward == BackwardMode::kTriplet || !SameImage(previous_gray_, current.gray)) return;
   ahead_.Reset();
   ahead_gray_ = next.gray;
-  ahead_moving_people_ = moving_people;
   // Copies of the headers: the task reads nothing that Compute changes.
-  PreviousFrame previous{current.gray, previous_.pyramid, moving_people};
-  ahead_ = executor_.Submit([this, previous = std::move(previous), next] { return Detect(next, previous); });
+  ahead_ = executor_.Submit(
+      [this, gray = current.gray, pyramid = previous_pyramid_, next] { return Detect(next, gray, pyramid); });
 }
 
 }  // namespace dynvo

@@ -20,9 +20,9 @@ class DifferencingMaskSource : public MaskSource {
 
   // kFirstFrame on the first call; else kComputed or kFailed (with the detector's reason).
   MaskPacket Compute(const MaskSourceInput& input) override;
-  // Starts frame t+1's mask against frame t (and its moving people) on the executor (not with
-  // "triplet", which needs frame t+2).
-  void LookAhead(const RgbdFrame& current, const cv::Mat& moving_people, const RgbdFrame& next) override;
+  // Starts frame t+1's mask against frame t on the executor (not with "triplet", which needs
+  // frame t+2).
+  void LookAhead(const RgbdFrame& current, const RgbdFrame& next) override;
 
  private:
   struct Detection {
@@ -30,35 +30,30 @@ class DifferencingMaskSource : public MaskSource {
     TrackingPyramid pyramid;  // of the frame the mask is of
     double ms = 0.0;
   };
-  // What a detection of frame t is made against: frame t-1's grey image, its pyramid and its
-  // people judged moving (the homography's corners are detected off them).
-  struct PreviousFrame {
-    cv::Mat gray;
-    TrackingPyramid pyramid;
-    cv::Mat moving_people;
-  };
-  // The detector's input for `frame` against `previous`, without frame t's pyramid.
-  DynamicMaskInput InputFor(const RgbdFrame& frame, const PreviousFrame& previous) const;
-  // The mask of `frame` against `previous`: reads only the options.
-  Detection Detect(const RgbdFrame& frame, const PreviousFrame& previous) const;
+  // The detector's input for `frame` against `previous_gray` (and its pyramid), without frame
+  // t's pyramid.
+  DynamicMaskInput InputFor(const RgbdFrame& frame, const cv::Mat& previous_gray,
+                            const TrackingPyramid& previous_pyramid) const;
+  // The mask of `frame` against `previous_gray` (and its pyramid): reads only the options.
+  Detection Detect(const RgbdFrame& frame, const cv::Mat& previous_gray, const TrackingPyramid& previous_pyramid) const;
   // The triplet's detection of `frame` (against frame t-1 and `next`), reusing the last call's.
   Detection DetectTriplet(const RgbdFrame& frame, const RgbdFrame* next);
-  // The look-ahead's detection when it was started for `frame` against `previous_moving_people`;
-  // else none (it is dropped).
-  bool TakeLookAhead(const RgbdFrame& frame, const cv::Mat& previous_moving_people, Detection* detection);
+  // The look-ahead's detection when it was started for `frame`; else none (it is dropped).
+  bool TakeLookAhead(const RgbdFrame& frame, Detection* detection);
 
   KltOptions klt_;
   HomographyOptions homography_;
   DynamicMaskOptions options_;
   ImageArea image_area_;
   Executor& executor_;
-  PreviousFrame previous_;        // gray and pyramid of the last frame computed; moving people set per call
-  cv::Mat next_gray_;             // triplet: the frame t+1 of the last call ...
-  TrackingPyramid next_pyramid_;  // ... its pyramid ...
-  PointTracks next_tracks_;       // ... and the last call's t -> t+1 tracks
+  cv::Mat previous_gray_;
+  TrackingPyramid previous_pyramid_;  // of previous_gray_
+  cv::Mat next_gray_;                 // triplet: the frame t+1 of the last call ...
+  TrackingPyramid next_pyramid_;      // ... its pyramid ...
+  PointTracks next_tracks_;           // ... and the last call's t -> t+1 tracks
   // The look-ahead: the detection of the frame whose grey image is ahead_gray_ (declared last,
   // so that it is waited for before what it reads is destroyed).
-  cv::Mat ahead_gray_, ahead_moving_people_;
+  cv::Mat ahead_gray_;
   Task<Detection> ahead_;
 };
 

@@ -45,7 +45,6 @@ struct MaskPacket {
   int threshold = -1;                              // grey level the forward difference was binarised at (kComputed)
   std::vector<Detection> people;                   // kDetected: the detector's boxes, best first
   std::optional<std::vector<bool>> people_moving;  // people refinement: each of `people` judged moving
-  cv::Mat moving_people;   // people refinement: the silhouettes of the people judged moving (CV_8UC1; may be empty)
   int detection_age = -1;  // kDetected: frames since `people` were detected (0: this frame; -1: never)
   DetectionStatus detection = DetectionStatus::kNone;  // what became of this frame's detection
   double detector_ms = 0.0;                            // the detector's own wall time on this frame (on its thread)

@@ -15,8 +15,6 @@ struct MaskSourceInput {
   const RgbdFrame* next = nullptr;  // frame t+1 when loaded (null at the end)
   const cv::Mat& truth_mask;        // frame t's ground-truth mask (empty when none)
   const cv::Mat& previous_mask;     // frame t-1's final mask (after the refinements; may be empty)
-  // Frame t-1's people judged moving (MaskPacket::moving_people; empty without a people refinement).
-  cv::Mat previous_moving_people;
 };
 
 class MaskSource {
@@ -25,11 +23,9 @@ class MaskSource {
   // Frame t's mask packet (status, mask, the ego-motion when estimated, intermediate images).
   // Throws InputError on bad input (e.g. a missing ground-truth mask).
   virtual MaskPacket Compute(const MaskSourceInput& input) = 0;
-  // Frame t's mask is refined (its people judged: `moving_people`) and frame t+1 is loaded: a
-  // source may start its work on frame t+1, to be taken by the next Compute when that is handed
-  // the same frame (same pixels in memory) and the same previous_moving_people. Results do not
-  // depend on it.
-  virtual void LookAhead(const RgbdFrame& /*current*/, const cv::Mat& /*moving_people*/, const RgbdFrame& /*next*/) {}
+  // Frame t+1 is loaded: a source may start its work on it, to be taken by the next Compute
+  // when that is handed the same frame (same pixels in memory). Results do not depend on it.
+  virtual void LookAhead(const RgbdFrame& /*current*/, const RgbdFrame& /*next*/) {}
   // True when Compute needs frame t's ground-truth mask.
   virtual bool NeedsTruthMask() const { return false; }
 };

@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "core/stopwatch.h"
-#include "dynamic_mask/mask_regions.h"
 
 namespace dynvo {
 
@@ -36,11 +35,8 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
       evidence, mask->has_motion ? std::optional<Eigen::Matrix3d>(mask->current_from_previous) : std::nullopt);
   for (size_t i = 0; i < people.size(); ++i)
     if (!moving[i]) mask->Remove(silhouettes[i]);
-  for (size_t i = 0; i < people.size(); ++i) {
-    if (!moving[i]) continue;
-    mask->Join(silhouettes[i]);
-    mask->moving_people = MaskUnion(mask->moving_people, silhouettes[i]);
-  }
+  for (size_t i = 0; i < people.size(); ++i)
+    if (moving[i]) mask->Join(silhouettes[i]);
   mask->people_moving = moving;
   mask->ms += MillisecondsSince(start);
 }

@@ -42,7 +42,7 @@ DetectorOptions BodyModel(const std::string& shared) {
 
 MaskPacket ComputeOn(MaskSource& source, const RgbdFrame& frame) {
   const cv::Mat none;
-  return source.Compute({frame, nullptr, none, none, none});
+  return source.Compute({frame, nullptr, none, none});
 }
 
 std::unique_ptr<DetectorMaskSource> YoloSource(const std::string& shared, Executor& executor) {
@@ -82,7 +82,7 @@ TEST(DetectorMaskSource, TheLookAheadOnWorkersGivesWhatItGivesInTurn) {
   Executor in_turn(0), workers(2);
   const std::unique_ptr<DetectorMaskSource> a = YoloSource(shared, in_turn), b = YoloSource(shared, workers);
   const MaskPacket first = ComputeOn(*a, frame);
-  b->LookAhead(frame, cv::Mat(), frame);  // started ahead on a worker, taken by the next Compute on the same pixels
+  b->LookAhead(frame, frame);  // started ahead on a worker, taken by the next Compute on the same pixels
   const MaskPacket second = ComputeOn(*b, frame);
   ASSERT_EQ(first.people.size(), second.people.size());
   EXPECT_EQ(cv::countNonZero(first.mask != second.mask), 0);
@@ -117,7 +117,7 @@ TEST(DetectorMaskSource, AFailingDetectorLeavesTheFramesGoingWithTheCarriedBoxes
   for (int i = 0; i < 4; ++i) frames.push_back(test::PanningFrame(i, false));
   for (int i = 0; i < 4; ++i) {
     const MaskPacket packet = ComputeOn(source, frames[static_cast<size_t>(i)]);
-    if (i < 3) source.LookAhead(frames[static_cast<size_t>(i)], cv::Mat(), frames[static_cast<size_t>(i) + 1]);
+    if (i < 3) source.LookAhead(frames[static_cast<size_t>(i)], frames[static_cast<size_t>(i) + 1]);
     ASSERT_EQ(packet.status, MaskStatus::kDetected);
     ASSERT_EQ(packet.people.size(), 1u) << "frame " << i;
     const bool failed = i == 1 || i == 2;

@@ -89,13 +89,6 @@ TEST(PeopleRefinement, APersonJudgedStillLeavesTheMaskOneTheDifferencingCoversSt
       const bool expect_moving = differenced > 0.0 || i < 6;
       EXPECT_EQ(moving, expect_moving) << differenced << " frame " << i;
       EXPECT_EQ(masked, expect_moving ? 60 * 180 : 0) << differenced << " frame " << i;
-      // The people judged moving, for the next frame's differencing: the person's silhouette,
-      // inside their box.
-      const cv::Mat& movers = packet.moving_people;
-      const int on_person = movers.empty() ? 0 : cv::countNonZero(movers(cv::Rect(310, 110, 60, 180)));
-      const int in_box = movers.empty() ? 0 : cv::countNonZero(movers(cv::Rect(300, 100, 80, 200)));
-      EXPECT_EQ(on_person, expect_moving ? 60 * 180 : 0) << differenced << " frame " << i;
-      EXPECT_EQ(movers.empty() ? 0 : cv::countNonZero(movers), in_box) << differenced << " frame " << i;
     }
   }
 }
