@@ -124,9 +124,8 @@ std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv:
   Eigen::Vector3d centre;
   for (int i = 0; i < 3; ++i) {
     std::vector<double>& values = axes[i];
-    const size_t at = i == 1 ? values.size() / 10 : values.size() / 2;  // camera y points down
-    std::nth_element(values.begin(), values.begin() + at, values.end());
-    centre[i] = values[at];
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    centre[i] = values[values.size() / 2];
   }
   return centre;
 }

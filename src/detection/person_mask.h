@@ -36,10 +36,9 @@ cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const Per
 double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOptions& options = {});
 
 // Where the person of `silhouette` (CV_8UC1, 255 = the person, e.g. PersonMaskFromBox's) is, in
-// the camera, from its back-projected pixels that have depth (every 4th row and column): across
-// and in depth their median, robust to the background and limbs a silhouette takes in or loses as
-// its box changes; vertically the height of their top tenth (head and shoulders), which does not
-// follow the box's lower edge as legs or a chair come in and out of it. nullopt when none has depth.
+// the camera: the per-axis median of its back-projected pixels that have depth (every 4th row and
+// column), robust to the background and limbs a silhouette takes in or loses as its box changes;
+// nullopt when none has depth.
 std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera);
 
 }  // namespace dynvo
