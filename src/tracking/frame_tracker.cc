@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstring>
-#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -128,21 +126,14 @@ void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, co
 }
 
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked,
-                                   const FrameLines* lines, const FrameDepth* depth) {
+                                   const FrameLines* lines) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
   frame_lines_ = lines != nullptr ? *lines : FrameLines{};
   lines_matched_.assign(frame_lines_.size(), 0);
   line_observations_.clear();
-  const bool check_depth = depth != nullptr && options_.depth_check.enabled;
-  std::vector<Eigen::Vector3f> depth_samples;  // this frame's, for the next frame's check
-  if (check_depth) depth_samples = SampleStaticDepth(camera_, *depth);
-  if (!initialized_) {
-    TrackingResult result = Initialise(features, stamp);
-    if (result.keyframe_inserted) KeepKeyframeDepth(std::move(depth_samples));
-    return result;
-  }
+  if (!initialized_) return Initialise(features, stamp);
 
   TrackingResult result;
   const Pose predicted_world_from_camera = motion_.Predict(stamp);
@@ -159,41 +150,14 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, 
   if (estimate.ok && options_.coherent_motion.enabled) RejectCoherentMotion(used, matches, estimate, result);
   if (estimate.ok && frame_lines_.size() > 0 && !TurnsTooFastForLines(estimate, stamp))
     RefineWithLines(used, matches, estimate, result);
-  if (estimate.ok && check_depth)
-    CheckAgainstDepth(depth->depth, predicted_world_from_camera, estimate, failure, result);
   if (estimate.ok)
     AcceptPose(used, stamp, matches, estimate, result);
   else
     HandleFailure(features, stamp, predicted_world_from_camera, failure, result);
-  if (result.keyframe_inserted) KeepKeyframeDepth(std::move(depth_samples));
   motion_.Update(result.world_from_camera, stamp);
   result.map_keyframes = static_cast<int>(map_.num_keyframes());
   result.map_points = static_cast<int>(map_.num_points());
   return result;
-}
-
-void FrameTracker::CheckAgainstDepth(const cv::Mat& depth, const Pose& predicted_world_from_camera,
-                                     PoseEstimate& estimate, std::string& failure, TrackingResult& result) const {
-  const auto keyframe = std::find_if(map_.keyframes().rbegin(), map_.keyframes().rend(),
-                                     [&](const Keyframe& k) { return k.id == keyframe_depth_id_; });
-  if (keyframe == map_.keyframes().rend()) return;  // the keyframe left the map: nothing to judge by
-  const SteadyClock::time_point start = SteadyClock::now();
-  const Pose keyframe_world_from_camera = keyframe->camera_from_world.inverse();
-  const std::optional<double> at_estimate =
-      DepthAgreement(camera_, keyframe_depth_samples_, depth, estimate.camera_from_world * keyframe_world_from_camera);
-  const std::optional<double> at_prediction = DepthAgreement(
-      camera_, keyframe_depth_samples_, depth, predicted_world_from_camera.inverse() * keyframe_world_from_camera);
-  result.pose_ms += MillisecondsSince(start);
-  if (!ContradictsDepth(at_estimate, at_prediction)) return;
-  estimate.ok = false;
-  failure = "the static depth contradicts the pose: " + std::to_string(std::lround(100.0 * *at_estimate)) +
-            "% of the last keyframe's lines up at it, " + std::to_string(std::lround(100.0 * *at_prediction)) +
-            "% at the motion model's prediction";
-}
-
-void FrameTracker::KeepKeyframeDepth(std::vector<Eigen::Vector3f> samples) {
-  keyframe_depth_samples_ = std::move(samples);
-  keyframe_depth_id_ = map_.keyframes().empty() ? -1 : map_.keyframes().back().id;
 }
 
 PoseEstimate FrameTracker::EstimateFramePose(const FrameFeatures& features, const Pose& predicted_camera_from_world,
@@ -604,7 +568,6 @@ void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry
   BindConfigKeys(prefix + ".map", &o->map, r);
   BindConfigKeys(prefix + ".keyframes", &o->keyframes, r);
   BindConfigKeys(prefix + ".coherent_motion", &o->coherent_motion, r);
-  BindConfigKeys(prefix + ".depth_check", &o->depth_check, r);
   r->Bind(prefix + ".min_matches", &o->min_matches, "fewer map matches: wider search, then lost");
   r->Bind(prefix + ".max_new_points", &o->max_new_points, "new map points per keyframe at most");
   r->Bind(prefix + ".max_ba_depth_rotation_deg_s", &o->max_ba_depth_rotation_deg_s,

@@ -18,7 +18,6 @@
 #include "pose/pose_solver.h"
 #include "pose/projection_matcher.h"
 #include "tracking/coherent_motion.h"
-#include "tracking/depth_agreement.h"
 #include "tracking/motion_model.h"
 #include "tracking/tracking_state.h"
 
@@ -41,7 +40,6 @@ struct TrackerOptions {
                                               // keeps its depths out of local BA; its new points still
                                               // start from depth (deg/s; 0 = never; >= 0)
   CoherentMotionOptions coherent_motion;      // "tracking.coherent_motion.*"
-  DepthCheckOptions depth_check;              // "tracking.depth_check.*"
   double rematch_radius_px = 5.0;             // after the first pose estimate, match again around it
                                               // within this radius and refine again (pixels; 0 = off,
                                               // >= 0)
@@ -68,7 +66,7 @@ struct TrackerOptions {
 };
 
 // The config keys of tracking (section "tracking") and of its parts (tracking.matching, .pose, .map, .keyframes,
-// .coherent_motion, .depth_check).
+// .coherent_motion).
 void BindConfigKeys(const std::string& prefix, TrackerOptions* options, ConfigRegistry* registry);
 
 struct TrackingResult {
@@ -113,12 +111,9 @@ class FrameTracker {
   // pose refinement and the keyframe; the others are never used. `lines` (optional) are the
   // frame's line segments off the mask: matched to the map's lines at the pose from the points,
   // they refine it with the points (PoseLineCost), and a keyframe keeps those with depth that
-  // matched none. `depth` (optional) is the frame's depth and dynamic mask: with
-  // depth_check.enabled, a pose estimate at which less than half as much of the last keyframe's
-  // static depth lines up as at the motion model's prediction is a failure (ContradictsDepth).
-  // Throws InputError when the feature arrays disagree in size or the depth is not the camera's.
+  // matched none. Throws InputError when the feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr,
-                       const FrameLines* lines = nullptr, const FrameDepth* depth = nullptr);
+                       const FrameLines* lines = nullptr);
 
   // The local map as of the last Track (and the mapper's work on it since).
   const LocalMap& map() const { return map_; }
@@ -180,14 +175,6 @@ class FrameTracker {
   // map, and their features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
-  // Fails `estimate` (ok = false, `failure` saying why) when the last keyframe's static depth
-  // (keyframe_depth_samples_, at its pose in the map) contradicts it against
-  // `predicted_world_from_camera`. The keyframe, not the last frame: a pose that corrects the
-  // last frame's error must not read as a jump.
-  void CheckAgainstDepth(const cv::Mat& depth, const Pose& predicted_world_from_camera, PoseEstimate& estimate,
-                         std::string& failure, TrackingResult& result) const;
-  // The frame just made the map's last keyframe: its static depth samples judge the next poses.
-  void KeepKeyframeDepth(std::vector<Eigen::Vector3f> samples);
   // True when the camera turns faster than lines_max_rotation_deg_s from the last frame to
   // `estimate`: the frame's lines are then dropped (frame_lines_ emptied).
   bool TurnsTooFastForLines(const PoseEstimate& estimate, double stamp);
@@ -218,8 +205,6 @@ class FrameTracker {
   int frames_since_keyframe_ = 0;
   int reference_tracked_ = 0;  // pose inliers of the last keyframe (0 after a seed)
   int consecutive_lost_ = 0;
-  std::vector<Eigen::Vector3f> keyframe_depth_samples_;  // the last keyframe's SampleStaticDepth (depth_check) ...
-  int64_t keyframe_depth_id_ = -1;                       // ... and its Keyframe::id
   // Scratch of the current frame: the map points handed to the matcher.
   std::vector<int64_t> visible_ids_;
   std::vector<Eigen::Vector3d> visible_points_;

@@ -31,8 +31,6 @@ class ConstantVelocityModel {
   void Reset();
 
   bool has_velocity() const { return num_poses_ >= 2; }
-  // The last recorded pose (world_from_camera); identity before any.
-  const Pose& last() const { return last_world_from_camera_; }
   // Motion from the last frame's camera to the one before: previous_from_last.
   const Pose& last_motion() const { return previous_from_last_; }
 

@@ -39,7 +39,6 @@ TEST(OdometryConfig, PaperConfigIsThePapersMethodLiterally) {
   EXPECT_EQ(c.tracking.readmit_masked_px, 0.0);
   EXPECT_EQ(c.tracking.new_point_confirmations, 0);
   EXPECT_FALSE(c.tracking.coherent_motion.enabled);
-  EXPECT_FALSE(c.tracking.depth_check.enabled);
 }
 
 TEST(OdometryConfig, IplIsThePaperWithTheDetectorForItsMaskLinesAndOrbSlam2DepthWeight) {
