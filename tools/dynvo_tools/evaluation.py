@@ -30,6 +30,11 @@ RPE_PER_FRAME = Metric("rpe_per_frame", "rpe", ("--delta", "1", "--delta-unit", 
 ATE = Metric("ate", "ate", (), "absolute_translational_error_m")
 
 
+def seed_overrides(seed: int) -> tuple[str, ...]:
+    """The `--set` assignments that make a run use RANSAC seed SEED (homography and pose)."""
+    return ("homography.seed=%d" % seed, "tracking.pose.seed=%d" % seed)
+
+
 @dataclass(frozen=True)
 class RunRequest:
     """One `dynvo-cli run`: a sequence folder, an output folder, a config and overrides."""

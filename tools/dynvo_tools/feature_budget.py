@@ -11,7 +11,7 @@ import os
 import statistics
 
 from .common import ROOT, ToolError, config_path, display_path, json_number, log, run_parallel, shared_dir
-from .evaluation import RPE_PER_FRAME, RPE_PER_SECOND, RunRequest, run_and_evaluate
+from .evaluation import RPE_PER_FRAME, RPE_PER_SECOND, RunRequest, run_and_evaluate, seed_overrides
 
 CSV_COLUMNS = ("config", "num_features", "seed", "rpe_second_m", "rpe_second_deg", "rpe_frame_m")
 DEFAULT_SEQUENCE = "rgbd_dataset_freiburg1_rpy_head150"
@@ -50,8 +50,7 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
 def one_run(dataset: str, out: str, config: str, budget: int, seed: int) -> dict[str, object]:
     """One config at one budget and seed, run and evaluated: a CSV row."""
     request = RunRequest(dataset, os.path.join(out, "%s_%d_seed%d" % (config, budget, seed)), config_path(config),
-                         ("features.num_features=%d" % budget, "homography.seed=%d" % seed,
-                          "tracking.pose.seed=%d" % seed))
+                         ("features.num_features=%d" % budget,) + seed_overrides(seed))
     evaluated = run_and_evaluate(request, (RPE_PER_SECOND, RPE_PER_FRAME), "%s %d seed %d" % (config, budget, seed))
     rotation = json_number(request.run_dir, os.path.join(request.run_dir, "rpe.json"), evaluated.reports["rpe"],
                            "rotational_error_deg.rmse")

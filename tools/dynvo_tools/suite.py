@@ -11,10 +11,12 @@ Sequences are generated into OUT/seq (kept while their spec.json matches what wo
 generated), runs go to OUT/runs/SEQUENCE/CONFIG, up to --jobs at a time. Writes
 RESULTS/suite_<split>.csv (one row per sequence and config) and RESULTS/suite_<split>.md, a table
 made from the CSV alone (the command `suite-table` makes it again without running anything).
+Tracking on real-looking frames is chaotic: one RANSAC seed can move a row's RPE by 2x. With
+--seeds N every run is repeated with seeds 1..N and each figure is the median over them.
 
 Normally run through bench/suite.sh, which builds the binaries first:
   python3 -m dynvo_tools suite [--split dev|validation|all] [--frames N] [--configs a,b,c]
-                               [--out DIR] [--results DIR] [--jobs N]
+                               [--out DIR] [--results DIR] [--jobs N] [--seeds N]
   python3 -m dynvo_tools suite-table --split dev|validation|all [--results DIR]
   (tools/ on PYTHONPATH; env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin;
    DYNVO_SHARED_DIR, default ../shared)
@@ -33,7 +35,7 @@ from typing import Optional
 
 from .common import (ROOT, ToolError, bin_path, config_path, display_path, log, run_parallel,
                      run_tool, shared_dir)
-from .evaluation import ATE, RPE_PER_SECOND, EvaluatedRun, RunRequest, run_and_evaluate
+from .evaluation import ATE, RPE_PER_SECOND, EvaluatedRun, RunRequest, run_and_evaluate, seed_overrides
 
 # The people of each source: the TUM presets of dynvo-insert-people (articulated photo people in
 # real frames) and the same scenarios of dynvo-synth (the same people in a synthetic room).
@@ -119,6 +121,8 @@ class RunResult:
     mask: Optional[dict[str, Optional[float]]]  # precision, recall, iou, still_kept; None: no mask or no masks/
     ms_median: float
     ms_p90: float
+    seeds: int = 1                  # runs (RANSAC seeds) the figures are the medians of
+    rpe_range: Optional[tuple[float, float]] = None  # over the seeds: min, max
 
 
 def short_name(real_folder: str) -> str:
@@ -202,19 +206,43 @@ def run_result(run: EvaluatedRun) -> RunResult:
                      mask=run.mask_quality(), ms_median=ms_median, ms_p90=ms_p90)
 
 
-def run_sequence(sequence: Sequence, config: str, out_dir: str, overrides: tuple[str, ...]) -> RunResult:
+def run_sequence(sequence: Sequence, config: str, out_dir: str, overrides: tuple[str, ...],
+                 seed: Optional[int] = None) -> RunResult:
     """Runs configs/CONFIG.json (then the overrides) on a sequence into OUT/runs/SEQUENCE/CONFIG
-    and evaluates it (per-second RPE and ATE)."""
-    request = RunRequest(sequence.folder, os.path.join(out_dir, "runs", sequence.name, config),
-                         config_path(config), overrides)
-    return run_result(run_and_evaluate(request, METRICS, "%s %s" % (sequence.name, config)))
+    and evaluates it (per-second RPE and ATE); with a RANSAC seed, into CONFIG_seedS with it."""
+    name = config if seed is None else "%s_seed%d" % (config, seed)
+    request = RunRequest(sequence.folder, os.path.join(out_dir, "runs", sequence.name, name), config_path(config),
+                         overrides + (() if seed is None else seed_overrides(seed)))
+    return run_result(run_and_evaluate(request, METRICS, "%s %s" % (sequence.name, name)))
+
+
+def median_of(values: list[Optional[float]]) -> Optional[float]:
+    """The median of the known values; None when none is known."""
+    known = [v for v in values if v is not None]
+    return statistics.median(known) if known else None
+
+
+def combine_seeds(results: list[RunResult]) -> RunResult:
+    """One run per RANSAC seed as one result: each figure the median over the seeds, the RPE's
+    range beside it. A single run stays as it is."""
+    if len(results) == 1:
+        return results[0]
+    masks = [r.mask for r in results if r.mask]
+    mask = {key: median_of([m.get(key) for m in masks]) for key in masks[0]} if masks else None
+    rpe = [r.rpe_m_s for r in results]
+    return RunResult(frames=results[0].frames, rpe_m_s=statistics.median(rpe),
+                     ate_m=statistics.median(r.ate_m for r in results), mask=mask,
+                     ms_median=statistics.median(r.ms_median for r in results),
+                     ms_p90=statistics.median(r.ms_p90 for r in results), seeds=len(results),
+                     rpe_range=(min(rpe), max(rpe)))
 
 
 # ---------------------------------------------------------------- results CSV
 
 CSV_COLUMNS = ("split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
                "twin_rpe_m_s", "ratio", "ate_m", "mask_precision", "mask_recall", "mask_iou",
-               "still_kept", "ms_median", "ms_p90", "overrides")
+               "still_kept", "ms_median", "ms_p90", "overrides", "seeds", "rpe_min_m_s", "rpe_max_m_s")
+OPTIONAL_COLUMNS = ("overrides", "still_kept", "seeds", "rpe_min_m_s", "rpe_max_m_s")  # not in older CSVs
 MASK_KEYS = ("precision", "recall", "iou")
 
 
@@ -236,7 +264,9 @@ def result_row(row: RowSpec, config: str, result: Optional[RunResult],
         return {key: cell(values.get(key)) for key in CSV_COLUMNS}
     values.update(status="ok", frames=result.frames, rpe_m_s=result.rpe_m_s,
                   twin_rpe_m_s=twin.rpe_m_s, ate_m=result.ate_m, ms_median=result.ms_median,
-                  ms_p90=result.ms_p90,
+                  ms_p90=result.ms_p90, seeds=result.seeds,
+                  rpe_min_m_s=result.rpe_range[0] if result.rpe_range else None,
+                  rpe_max_m_s=result.rpe_range[1] if result.rpe_range else None,
                   ratio=result.rpe_m_s / twin.rpe_m_s if twin.rpe_m_s > 0 else None)
     for key in MASK_KEYS:
         values["mask_" + key] = result.mask[key] if result.mask else None
@@ -264,7 +294,7 @@ def read_results(path: str) -> list[dict[str, str]]:
             reader = csv.DictReader(f)
             rows = list(reader)
             missing = [c for c in CSV_COLUMNS
-                       if c not in ("overrides", "still_kept") and c not in (reader.fieldnames or [])]
+                       if c not in OPTIONAL_COLUMNS and c not in (reader.fieldnames or [])]
     except OSError as error:
         raise table_error(path, "cannot read (%s): run the suite first" % error.strerror) from None
     if missing:
@@ -286,6 +316,12 @@ def csv_number(row: dict[str, str], key: str, path: str) -> Optional[float]:
     except ValueError:
         raise table_error(path, "%s %s: %s is not a number: %r" % (
             row["sequence"], row["config"], key, row[key])) from None
+
+
+def seeds_of(rows: list[dict[str, str]]) -> int:
+    """The RANSAC seeds the split's figures are medians over (1: single runs, older CSVs too)."""
+    return max([int(r["seeds"]) for r in rows if r["status"] == "ok" and r.get("seeds", "-") not in ("-", "")]
+               or [1])
 
 
 def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
@@ -312,6 +348,11 @@ def caption(split: str, rows: list[dict[str, str]], configs: list[str]) -> str:
         " the pose. **ms**: `processing_ms` per frame, median/p90, with runs in parallel.",
         "Frames: %s." % ("; ".join(frames) if frames else "none run"),
     ]
+    seeds = seeds_of(rows)
+    if seeds > 1:
+        text.append("Every run over RANSAC seeds 1-%d (`--set homography.seed=S --set tracking.pose.seed=S`):"
+                    " each figure is the median over the seeds, the RPE's [min, max] after it; the ratio is"
+                    " the median over the twin's median." % seeds)
     overrides = sorted({r.get("overrides", "-") for r in rows} - {"-", ""})
     if overrides:
         text.append("Every run with %s." % ", ".join("`--set %s`" % o for group in overrides for o in group.split("; ")))
@@ -330,15 +371,17 @@ def sequence_cells(by_config: dict[str, dict[str, str]], configs: list[str], mas
                    path: str) -> list[str]:
     """The cells of one sequence's row after its name and twin."""
     def num(config: str, key: str) -> Optional[float]:
-        return csv_number(by_config[config], key, path) if config in by_config else None
+        row = by_config.get(config)
+        return csv_number(row, key, path) if row is not None and key in row else None
 
     def fmt(value: Optional[float], pattern: str) -> str:
         return "-" if value is None else pattern % value
 
     cells = []
     for c in configs:
-        ratio = num(c, "ratio")
-        cells.append(fmt(num(c, "rpe_m_s"), "%.4f") + ("" if ratio is None else " (%.2fx)" % ratio))
+        ratio, low, high = num(c, "ratio"), num(c, "rpe_min_m_s"), num(c, "rpe_max_m_s")
+        cells.append(fmt(num(c, "rpe_m_s"), "%.4f") + ("" if low is None or high is None else " [%.4f, %.4f]" % (low, high))
+                     + ("" if ratio is None else " (%.2fx)" % ratio))
     cells += [fmt(num(c, "ate_m"), "%.4f") for c in configs]
     for c in masked:
         values = [num(c, "mask_" + key) for key in ("recall", "precision", "iou")]
@@ -383,9 +426,11 @@ def write_markdown(csv_path: str, md_path: str) -> None:
     rows = read_results(csv_path)
     split = rows[0]["split"]
     configs = list(dict.fromkeys(r["config"] for r in rows))
+    seeds = seeds_of(rows)
     text = [caption(split, rows, configs), ""] + table_lines(rows, configs, csv_path) + [
-        "", "Generated by `bash bench/suite.sh --split %s`; the table alone again from %s by"
-        " `bash bench/suite.sh table --split %s`." % (split, os.path.basename(csv_path), split)]
+        "", "Generated by `bash bench/suite.sh --split %s%s`; the table alone again from %s by"
+        " `bash bench/suite.sh table --split %s`." % (split, " --seeds %d" % seeds if seeds > 1 else "",
+                                                      os.path.basename(csv_path), split)]
     with open(md_path, "w") as f:
         f.write("\n".join(text) + "\n")
 
@@ -415,9 +460,11 @@ def run_suite(args: argparse.Namespace) -> int:
     log("suite", "%d sequences generated, %d kept" % (sum(made), len(made) - sum(made)))
     runs = list(dict.fromkeys((s, c) for row in ready for s in (row.sequence, row.twin)
                               for c in args.configs))
-    log("suite", "%d runs, %d at a time" % (len(runs), args.jobs))
-    results = dict(zip(runs, run_parallel(
-        [functools.partial(run_sequence, s, c, out_dir, tuple(args.overrides)) for s, c in runs], args.jobs)))
+    seeds: list[Optional[int]] = list(range(1, args.seeds + 1)) if args.seeds > 1 else [None]
+    log("suite", "%d runs, %d at a time" % (len(runs) * len(seeds), args.jobs))
+    each = run_parallel([functools.partial(run_sequence, s, c, out_dir, tuple(args.overrides), seed)
+                         for s, c in runs for seed in seeds], args.jobs)
+    results = {run: combine_seeds(each[k * len(seeds):(k + 1) * len(seeds)]) for k, run in enumerate(runs)}
     os.makedirs(args.results, exist_ok=True)
     for split in splits:
         csv_path = os.path.join(args.results, "suite_%s.csv" % split)
@@ -445,6 +492,8 @@ def checked_run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> in
         parser.error("--frames must be at least 2")
     if args.jobs < 1:
         parser.error("--jobs must be at least 1")
+    if args.seeds < 1:
+        parser.error("--seeds must be at least 1")
     for config in args.configs:
         if not os.path.isfile(config_path(config)):
             parser.error("--configs: no configs/%s.json" % config)
@@ -483,6 +532,9 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
                         help="runs at the same time (default: the number of cores)")
     parser.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                         help="config override for every run, e.g. detector.model=PATH (repeatable)")
+    parser.add_argument("--seeds", type=int, default=1, metavar="N",
+                        help="run each config on each sequence with RANSAC seeds 1..N and report the medians"
+                             " (default 1: one run with the config's own seeds)")
     parser.set_defaults(run=functools.partial(checked_run, parser))
     table = commands.add_parser(
         "suite-table", help="the benchmark suite's Markdown tables again from their CSVs",
