@@ -9,9 +9,11 @@
 #   The configs find the person detector's model at data/models/ of the folder the suite runs in
 #   (bash tools/fetch_models.sh puts it there; without it dynvo runs geometric only and ipl
 #   fails). The tables of docs/results.md: from the repository root, after fetching the model,
-#   bash bench/suite.sh --configs baseline,paper,dynvo,ipl
+#   bash bench/suite.sh --configs baseline,paper,dynvo,ipl --seeds 5
 #   bash bench/suite.sh table --split dev      (the Markdown again from the CSV; no build, no runs:
 #                                               the command suite-table)
+#   bash bench/suite.sh compare BEFORE.csv AFTER.csv   (two results CSVs of one split row by row:
+#                                               RPE ratios and their geometric mean; suite-compare)
 #   (env: DYNVO_BUILD_DIR, DYNVO_SHARED_DIR, PYTHON)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -21,6 +23,9 @@ command=suite
 if [ "${1:-}" = "table" ]; then
   shift
   command=suite-table
+elif [ "${1:-}" = "compare" ]; then
+  shift
+  command=suite-compare
 else
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j "$(nproc)" --target dynvo-cli rpe ate dynvo-synth dynvo-insert-people >/dev/null

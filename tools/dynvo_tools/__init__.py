@@ -3,6 +3,7 @@ made from them. One command line, `python3 -m dynvo_tools COMMAND` (tools/ on PY
 shell wrappers in tools/ and bench/ build the binaries first and call it):
 
   suite, suite-table   the benchmark suite's dev and validation splits (bench/suite.sh)
+  suite-compare        two suite results CSVs row by row: a change judged (bench/suite.sh compare)
   table1               the paper's Table 1 on the sequences at hand (tools/table1.sh)
   sweep                a parameter sweep over a JSON grid, locally or as a Slurm array (tools/sweep.sh)
   figures              RPE over time, trajectory top view, mask panels (tools/figures.sh)

@@ -5,10 +5,12 @@ import argparse
 import sys
 from typing import Optional, Sequence
 
-from . import compare, evaluation, feature_budget, figures, lists, memory_table, speed_table, suite, sweep, table1, table3
+from . import (compare, evaluation, feature_budget, figures, lists, memory_table, speed_table, suite, suite_compare,
+               sweep, table1, table3)
 from .common import ToolError
 
-COMMANDS = (suite, table1, table3, sweep, figures, feature_budget, speed_table, memory_table, evaluation, lists, compare)
+COMMANDS = (suite, suite_compare, table1, table3, sweep, figures, feature_budget, speed_table, memory_table, evaluation,
+            lists, compare)
 
 
 def parser() -> argparse.ArgumentParser:
