@@ -11,7 +11,7 @@ Sequences are generated into OUT/seq (kept while their spec.json matches what wo
 generated), runs go to OUT/runs/SEQUENCE/CONFIG, up to --jobs at a time. Writes
 RESULTS/suite_<split>.csv (one row per sequence and config) and RESULTS/suite_<split>.md, a table
 made from the CSV alone (the command `suite-table` makes it again without running anything).
-Tracking on real-looking frames is chaotic: one RANSAC seed can move a row's RPE by 2x. With
+Tracking on real-looking frames is chaotic: another RANSAC seed can move a row's RPE severalfold. With
 --seeds N every run is repeated with seeds 1..N and each figure is the median over them.
 
 Normally run through bench/suite.sh, which builds the binaries first:
