@@ -318,6 +318,11 @@ def csv_number(row: dict[str, str], key: str, path: str) -> Optional[float]:
             row["sequence"], row["config"], key, row[key])) from None
 
 
+def csv_optional(row: dict[str, str], key: str, path: str) -> Optional[float]:
+    """csv_number of a column that older CSVs may lack (None then, as for "-")."""
+    return csv_number(row, key, path) if key in row else None
+
+
 def seeds_of(rows: list[dict[str, str]]) -> int:
     """The RANSAC seeds the split's figures are medians over (1: single runs, older CSVs too)."""
     return max([int(r["seeds"]) for r in rows if r["status"] == "ok" and r.get("seeds", "-") not in ("-", "")]
@@ -372,7 +377,7 @@ def sequence_cells(by_config: dict[str, dict[str, str]], configs: list[str], mas
     """The cells of one sequence's row after its name and twin."""
     def num(config: str, key: str) -> Optional[float]:
         row = by_config.get(config)
-        return csv_number(row, key, path) if row is not None and key in row else None
+        return csv_optional(row, key, path) if row is not None else None
 
     def fmt(value: Optional[float], pattern: str) -> str:
         return "-" if value is None else pattern % value

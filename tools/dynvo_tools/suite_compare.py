@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from .common import ToolError, display_path
-from .suite import comma_list, csv_number, read_results
+from .suite import comma_list, csv_number, csv_optional, read_results
 
 
 @dataclass(frozen=True)
@@ -41,11 +41,6 @@ def ok_rows(path: str) -> tuple[str, dict[tuple[str, str], dict[str, str]]]:
     return rows[0]["split"], {(r["config"], r["sequence"]): r for r in rows if r["status"] == "ok"}
 
 
-def optional_number(row: dict[str, str], key: str, path: str) -> Optional[float]:
-    """A cell that older CSVs may lack (None then, as for "-")."""
-    return csv_number(row, key, path) if key in row else None
-
-
 def changes(before_path: str, after_path: str, configs: Optional[tuple[str, ...]]) -> dict[str, list[RowChange]]:
     """Per config (in the after CSV's order), the rows both CSVs ran with a positive RPE before."""
     split_before, before = ok_rows(before_path)
@@ -61,7 +56,7 @@ def changes(before_path: str, after_path: str, configs: Optional[tuple[str, ...]
         rpe_before, rpe_after = csv_number(old, "rpe_m_s", before_path), csv_number(new, "rpe_m_s", after_path)
         if rpe_before is None or rpe_after is None or rpe_before <= 0:
             continue
-        pairs = [(optional_number(old, column, before_path), optional_number(new, column, after_path))
+        pairs = [(csv_optional(old, column, before_path), csv_optional(new, column, after_path))
                  for column in ("mask_recall", "mask_precision", "still_kept")]
         by_config.setdefault(key[0], []).append(RowChange(key[1], (rpe_before, rpe_after), *pairs))
     if not by_config:
