@@ -5,7 +5,9 @@
 # `python3 -m dynvo_tools suite` (tools/dynvo_tools/suite.py: all the logic; its docstring tells
 # the rest). Writes bench/results/suite_<split>.csv and suite_<split>.md.
 #   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,dynvo]
-#                       [--out DIR] [--results DIR] [--jobs N] [--set KEY=VALUE]... [--seeds N]
+#                       [--out DIR] [--results DIR] [--jobs N] [--set KEY=VALUE]... [--seeds N] [--update]
+#   --update keeps the other configs' rows of the CSVs in --results: after a change that moves
+#   one config only, bash bench/suite.sh --configs dynvo --seeds 5 --update
 #   The configs find the person detector's model at data/models/ of the folder the suite runs in
 #   (bash tools/fetch_models.sh puts it there; without it dynvo runs geometric only and ipl
 #   fails). The tables of docs/results.md: from the repository root, after fetching the model,

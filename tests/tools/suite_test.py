@@ -284,6 +284,35 @@ class WithFakeBinaries(unittest.TestCase):
             self.assertTrue(all("/baseline_seed%d " % seed in c or "/paper_seed%d " % seed in c for c in ran))
         self.assertEqual(self.run_suite("--seeds", "0").returncode, 2)
 
+    def test_update_keeps_the_rows_of_the_configs_not_run(self):
+        self.assertEqual(self.run_suite().returncode, 0)
+        os.remove(os.path.join(self.bin, "cli.log"))
+        self.fake("rpe", FAKE_RPE.replace("r=0.02", "r=0.03"))  # paper's runs now differ
+        result = self.run_suite("--configs", "paper", "--update")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(self.tmp.name, "results", "suite_dev.csv")) as f:
+            rows = list(csv.DictReader(f))
+        ok = [(r["config"], r["ratio"]) for r in rows if r["status"] == "ok"]
+        self.assertEqual(ok, [("baseline", "2.0"), ("paper", "3.0")] * 3 * len(suite.PRESETS))
+        self.assertEqual(len([r for r in rows if r["status"] == suite.NOT_RUN]), 2 * len(suite.PRESETS))
+        with open(os.path.join(self.bin, "cli.log")) as f:
+            self.assertTrue(all("paper.json" in call for call in f.read().splitlines()))
+
+    def test_update_refuses_other_seeds_or_no_csv_before_any_run(self):
+        self.assertEqual(self.run_suite().returncode, 0)
+        os.remove(os.path.join(self.bin, "cli.log"))
+        result = self.run_suite("--configs", "paper", "--update", "--seeds", "2")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("suite_dev.csv: --update: made with --seeds 1, not 2", result.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.bin, "cli.log")))  # nothing was run
+        self.fake("dynvo-cli", FAKE_CLI.replace('"frames_to_process": 3', '"frames_to_process": 4'))
+        result = self.run_suite("--configs", "paper", "--update")
+        self.assertEqual(result.returncode, 1)
+        self.assertRegex(result.stderr, r"--update: synth_\w+ has 3 frames there and 4 now")
+        result = self.run_suite("--update", "--results", os.path.join(self.tmp.name, "elsewhere"))
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("cannot read", result.stderr)
+
     def test_a_failed_run_names_sequence_config_and_program(self):
         self.fake("dynvo-cli", FAILING)
         result = self.run_suite()

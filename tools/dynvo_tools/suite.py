@@ -16,7 +16,7 @@ Tracking on real-looking frames is chaotic: another RANSAC seed can move a row's
 
 Normally run through bench/suite.sh, which builds the binaries first:
   python3 -m dynvo_tools suite [--split dev|validation|all] [--frames N] [--configs a,b,c]
-                               [--out DIR] [--results DIR] [--jobs N] [--seeds N]
+                               [--out DIR] [--results DIR] [--jobs N] [--seeds N] [--update]
   python3 -m dynvo_tools suite-table --split dev|validation|all [--results DIR]
   (tools/ on PYTHONPATH; env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin;
    DYNVO_SHARED_DIR, default ../shared)
@@ -448,6 +448,32 @@ def splits_of(args: argparse.Namespace) -> tuple[str, ...]:
     return SPLITS if args.split == "all" else (args.split,)
 
 
+def kept_rows(path: str, rows: list[RowSpec], args: argparse.Namespace) -> list[dict[str, str]]:
+    """With --update: the rows of the results CSV at path of the configs not run now, checked
+    before any run: the same sequences and seeds as this run's. A ToolError otherwise."""
+    old = read_results(path)
+    if {r["sequence"] for r in old} != {row.sequence.name for row in rows}:
+        raise table_error(path, "--update: holds other sequences than this split has now: run every config")
+    kept = [r for r in old if r["config"] not in args.configs]
+    if kept and seeds_of(kept) != args.seeds:
+        raise table_error(path, "--update: made with --seeds %d, not %d" % (seeds_of(kept), args.seeds))
+    return kept
+
+
+def merged_rows(path: str, kept: list[dict[str, str]], new: list[dict[str, str]]) -> list[dict[str, str]]:
+    """The kept rows of other configs and the new rows, sequence by sequence, the kept configs
+    first; a ToolError when a sequence's frames differ between them (another --frames)."""
+    frames = {r["sequence"]: r["frames"] for r in new if r["status"] == "ok"}
+    for r in kept:
+        if r["status"] == "ok" and frames.get(r["sequence"], r["frames"]) != r["frames"]:
+            raise table_error(path, "--update: %s has %s frames there and %s now: run every config" % (
+                r["sequence"], r["frames"], frames[r["sequence"]]))
+    configs = list(dict.fromkeys([r["config"] for r in kept] + [r["config"] for r in new]))
+    by_key = {(r["sequence"], r["config"]): r for r in kept + new}
+    return [by_key[(sequence, config)] for sequence in dict.fromkeys(r["sequence"] for r in new)
+            for config in configs if (sequence, config) in by_key]
+
+
 def run_suite(args: argparse.Namespace) -> int:
     """Generates the splits' sequences, runs and evaluates every config on each, and writes
     RESULTS/suite_<split>.csv and .md."""
@@ -456,6 +482,8 @@ def run_suite(args: argparse.Namespace) -> int:
     out_dir = os.path.abspath(args.out)
     shared = shared_dir()
     rows = {s: split_rows(s, args.frames, out_dir, shared) for s in splits}
+    kept = {s: kept_rows(os.path.join(args.results, "suite_%s.csv" % s), rows[s], args) for s in splits} \
+        if args.update else {}
     ready = [row for split in splits for row in rows[split] if row.available]
     if len(ready) < sum(len(r) for r in rows.values()):
         log("suite", "%s: absent: the rows with people inserted into real frames are not run"
@@ -473,9 +501,9 @@ def run_suite(args: argparse.Namespace) -> int:
     os.makedirs(args.results, exist_ok=True)
     for split in splits:
         csv_path = os.path.join(args.results, "suite_%s.csv" % split)
-        write_csv(csv_path, [result_row(row, c, results.get((row.sequence, c)),
-                                        results.get((row.twin, c)), tuple(args.overrides))
-                             for row in rows[split] for c in args.configs])
+        new_rows = [result_row(row, c, results.get((row.sequence, c)), results.get((row.twin, c)),
+                               tuple(args.overrides)) for row in rows[split] for c in args.configs]
+        write_csv(csv_path, merged_rows(csv_path, kept[split], new_rows) if args.update else new_rows)
         write_markdown(csv_path, csv_path[:-4] + ".md")
         log("suite", "wrote %s and .md" % display_path(csv_path))
     log("suite", "done in %.0f s" % (time.monotonic() - start))
@@ -540,6 +568,10 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
     parser.add_argument("--seeds", type=int, default=1, metavar="N",
                         help="run each config on each sequence with RANSAC seeds 1..N and report the medians"
                              " (default 1: one run with the config's own seeds)")
+    parser.add_argument("--update", action="store_true",
+                        help="keep the rows of the configs not in --configs from the split's CSV in --results"
+                             " (same sequences and --seeds, checked first; same frames); the configs run replace"
+                             " theirs there or join them: one config's figures after it changed")
     parser.set_defaults(run=functools.partial(checked_run, parser))
     table = commands.add_parser(
         "suite-table", help="the benchmark suite's Markdown tables again from their CSVs",
