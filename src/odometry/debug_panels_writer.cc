@@ -127,10 +127,23 @@ std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const Tra
   return list;
 }
 
+cv::Mat DrawMaskAgainstTruth(const cv::Mat& bgr, const cv::Mat& mask, const cv::Mat& moving, const cv::Mat& still) {
+  CV_Assert(mask.size() == bgr.size() && moving.size() == bgr.size() && (still.empty() || still.size() == bgr.size()));
+  cv::Mat out = bgr * 0.5;
+  const cv::Mat masked = mask != 0, truth = moving != 0;
+  const cv::Mat standing = still.empty() ? cv::Mat::zeros(bgr.size(), CV_8UC1) : cv::Mat(still != 0);
+  out.setTo(cv::Scalar(0, 255, 0), masked & truth);
+  out.setTo(cv::Scalar(0, 0, 255), masked & ~truth & ~standing);
+  out.setTo(cv::Scalar(0, 255, 255), masked & ~truth & standing);
+  out.setTo(cv::Scalar(255, 0, 0), ~masked & truth);
+  return out;
+}
+
 DebugPanelsWriter::DebugPanelsWriter(std::string dir, std::set<size_t> frames)
     : dir_(std::move(dir)), frames_(std::move(frames)) {}
 
-void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed) const {
+void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed, const cv::Mat& moving,
+                                const cv::Mat& still) const {
   if (frames_.count(frame.index) == 0) return;
   const MaskPacket& mask = processed.stages.mask;
   const std::vector<DebugFeature> features =
@@ -164,7 +177,9 @@ void DebugPanelsWriter::OnFrame(const RgbdFrame& frame, const ProcessedFrame& pr
       {"map_occlusion_candidates", mask.map_occlusion_candidates},
       {"lines", DrawLines(current_bgr, processed.stages.features, processed.stages.tracking)},
       {"detections",
-       !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask) : cv::Mat()}};
+       !detected && mask.detection != DetectionStatus::kNone ? DrawDetections(current_bgr, mask) : cv::Mat()},
+      {"mask_vs_truth",
+       !moving.empty() && !mask.mask.empty() ? DrawMaskAgainstTruth(current_bgr, mask.mask, moving, still) : cv::Mat()}};
   for (const auto& [name, image] : additions)
     if (!image.empty()) Save(dir + prefix + name + ".png", image);
   cv::Mat top, bottom, grid;

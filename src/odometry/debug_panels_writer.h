@@ -29,6 +29,13 @@ struct DebugFeature {
 // removed ones.
 std::vector<DebugFeature> ListDebugFeatures(const FeatureSplit& split, const TrackingResult& tracking);
 
+// Frame t (`bgr`, darkened to half) coloured by how its dynamic `mask` agrees with the ground
+// truth, as run.json's mask precision and recall count it: green masked and moving, red masked
+// but static, blue moving but not masked; yellow masked on a person standing still (`still`,
+// counted as static by the precision). `mask`, `moving` and `still` are CV_8UC1 of bgr's size,
+// non-zero = set; an empty `still` means nobody stands still.
+cv::Mat DrawMaskAgainstTruth(const cv::Mat& bgr, const cv::Mat& mask, const cv::Mat& moving, const cv::Mat& still);
+
 class DebugPanelsWriter {
  public:
   // Writes the panels of the frames in `frames` into `dir` (which must exist).
@@ -39,8 +46,11 @@ class DebugPanelsWriter {
   // depth_change, map_occlusion and map_occlusion_candidates though they are not in the
   // montage), <dir>/frame_<index>_panels.png (2 x 3 grid with titles) and
   // <dir>/frame_<index>_features.csv (x, y, octave, depth_m, status kept/removed/readmitted,
-  // inlier 0/1). Throws InputError when a file cannot be written.
-  void OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed) const;
+  // inlier 0/1); with the frame's ground truth (`moving` and `still` people, as
+  // DrawMaskAgainstTruth takes them; empty `moving`: none) and a mask, also mask_vs_truth.
+  // Throws InputError when a file cannot be written.
+  void OnFrame(const RgbdFrame& frame, const ProcessedFrame& processed, const cv::Mat& moving = cv::Mat(),
+               const cv::Mat& still = cv::Mat()) const;
 
  private:
   std::string dir_;

@@ -340,11 +340,12 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     const ProcessedFrame processed = pipeline.Process(current.frame, next, current.truth_mask);
     FrameRecord record = processed.record;
     record.times.load_ms = current.load_ms;
+    const cv::Mat moving = evaluate_masks ? cv::Mat(current.truth_mask & ~current.still_people) : cv::Mat();
     if (evaluate_masks) {
-      record.mask_quality = CompareMasks(processed.stages.mask.mask, current.truth_mask & ~current.still_people);
+      record.mask_quality = CompareMasks(processed.stages.mask.mask, moving);
       record.still_features = CountStillFeatures(processed.stages.features.split, current.still_people);
     }
-    debug_panels.OnFrame(current.frame, processed);
+    debug_panels.OnFrame(current.frame, processed, moving, current.still_people);
     trajectory.Append(FormatTrajectory({{record.stamp, record.world_from_camera}}));
     timing.Write(record);
     tally.Add(record);

@@ -530,6 +530,19 @@ TEST_F(EndToEnd, DebugFramesWriteThePanels) {
   const cv::Mat panels = cv::imread(request.out_dir + "/debug/frame_000040_panels.png");
   EXPECT_EQ(panels.cols, 3 * 640);
   EXPECT_EQ(panels.rows, 2 * 480);
+  // The mask against the generated truth: its colours count what timing.csv's frame 40 reports
+  // (green: masked and moving; red and yellow: masked, static; blue: moving, missed).
+  const cv::Mat truth = cv::imread(request.out_dir + "/debug/frame_000040_mask_vs_truth.png");
+  ASSERT_FALSE(truth.empty());
+  auto count = [&](const cv::Scalar& colour) {
+    cv::Mat hits;
+    cv::inRange(truth, colour, colour, hits);
+    return static_cast<double>(cv::countNonZero(hits));
+  };
+  const double tp = count({0, 255, 0}), fp = count({0, 0, 255}) + count({0, 255, 255}), fn = count({255, 0, 0});
+  ASSERT_GT(tp, 0.0);
+  EXPECT_NEAR(tp / (tp + fp), std::stod(TimingColumn(request.out_dir, "mask_precision").at(40)), 1e-4);
+  EXPECT_NEAR(tp / (tp + fn), std::stod(TimingColumn(request.out_dir, "mask_recall").at(40)), 1e-4);
 }
 
 }  // namespace
