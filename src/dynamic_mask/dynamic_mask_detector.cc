@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -15,7 +14,6 @@
 #include "dynamic_mask/mask_morphology.h"
 #include "dynamic_mask/mask_regions.h"
 #include "dynamic_mask/motion_compensation.h"
-#include "ego_motion/rigid_consensus.h"
 
 namespace dynvo {
 namespace {
@@ -136,8 +134,6 @@ struct DetectionSetup {
   bool use_next = false;       // kTriplet with a next frame
   PointTracks forward_tracks;  // previous = frame t-1 point, current = frame t point
   PointTracks next_tracks;     // previous = frame t+1 point, current = frame t point
-  PointTracks candidates;      // the forward tracks the homography may use: the rigid consensus, else all
-  std::optional<Eigen::Matrix3d> rigid_homography;  // the rigid consensus's, when there is one
   int level = 0;               // the differencing level
   cv::Mat previous_level, current_level, next_level;
   DynamicMaskOptions level_options;  // kernels scaled to the level
@@ -145,8 +141,7 @@ struct DetectionSetup {
 };
 
 // Step 1: corners once in frame t, tracked into t-1 (unless given) and t+1; the level images.
-DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions& klt,
-                                const HomographyOptions& homography, const DynamicMaskOptions& options,
+DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions& klt, const DynamicMaskOptions& options,
                                 DynamicMaskResult* result) {
   DetectionSetup s;
   s.size = input.current_gray.size();
@@ -163,15 +158,6 @@ DetectionSetup PrepareDetection(const DynamicMaskInput& input, const KltOptions&
       (!tracks_given || s.use_next) ? DetectCorners(current_pyramid, klt) : std::vector<cv::Point2f>();
   s.forward_tracks =
       tracks_given ? input.previous_tracks : TracksIntoFrameT(current_pyramid, previous_pyramid, corners, klt);
-  s.candidates = s.forward_tracks;
-  if (!input.current_depth.empty()) {
-    const RigidConsensus rigid = FindRigidConsensus(s.forward_tracks, input.current_depth, input.camera, homography);
-    if (rigid.ok) {
-      s.candidates = SelectTracks(s.forward_tracks, rigid.inliers);
-      s.rigid_homography = rigid.current_from_previous;
-      result->num_rigid_tracks = rigid.num_inliers;
-    }
-  }
   s.level = options.difference_level;
   if (s.use_next) {
     const TrackingPyramid& next_pyramid = PyramidOf(input.next_gray, input.next_pyramid, klt, &built_next);
@@ -238,13 +224,8 @@ enum class RoundEnd { kNext, kDone, kFailed };
 RoundEnd DetectRound(int round, const DetectionSetup& s, const HomographyOptions& homography,
                      const DynamicMaskOptions& options, Executor* executor, RoundState* state,
                      DynamicMaskResult* result) {
-  HomographyEstimate h_forward =
+  const HomographyEstimate h_forward =
       EstimateHomography(state->static_forward.previous, state->static_forward.current, homography);
-  if (!h_forward.ok && round == 1 && s.rigid_homography) {
-    // The rigid consensus spans depths no one fitted homography holds: the one its motion induces.
-    h_forward.ok = true;
-    h_forward.current_from_previous = *s.rigid_homography;
-  }
   if (!h_forward.ok) {
     if (round > 1) return RoundEnd::kDone;  // keep the previous round's mask
     result->failure = h_forward.failure;
@@ -283,28 +264,13 @@ RoundEnd DetectRound(int round, const DetectionSetup& s, const HomographyOptions
   result->rounds_run = round;
   if (round == options.rounds) return RoundEnd::kDone;
   // Step 5: drop the tracks inside the mask's regions; an unchanged static set would repeat this round.
-  PointTracks kept_forward = StaticTracks(s.candidates, fused);
+  PointTracks kept_forward = StaticTracks(s.forward_tracks, fused);
   PointTracks kept_next = StaticTracks(s.next_tracks, fused);
   if (kept_forward.current == state->static_forward.current && kept_next.current == state->static_next.current)
     return RoundEnd::kDone;
   state->static_forward = std::move(kept_forward);
   state->static_next = std::move(kept_next);
   return RoundEnd::kNext;
-}
-
-// The rounds of one detection from the setup's candidate tracks; false when the first failed
-// (result->failure says why).
-bool RunRounds(const DetectionSetup& setup, const HomographyOptions& homography, const DynamicMaskOptions& options,
-               Executor* executor, DynamicMaskResult* result) {
-  RoundState state;
-  state.static_forward = setup.candidates;
-  state.static_next = setup.next_tracks;
-  for (int round = 1; round <= options.rounds; ++round) {
-    const RoundEnd end = DetectRound(round, setup, homography, options, executor, &state, result);
-    if (end == RoundEnd::kFailed) return false;
-    if (end == RoundEnd::kDone) break;
-  }
-  return true;
 }
 
 }  // namespace
@@ -324,8 +290,15 @@ DynamicMaskResult DetectDynamicMask(const DynamicMaskInput& input, const KltOpti
 
   DynamicMaskResult result;
   result.mask = cv::Mat::zeros(size, CV_8UC1);
-  const DetectionSetup setup = PrepareDetection(input, klt, homography, options, &result);
-  if (!RunRounds(setup, homography, options, executor, &result)) return result;
+  const DetectionSetup setup = PrepareDetection(input, klt, options, &result);
+  RoundState state;
+  state.static_forward = setup.forward_tracks;
+  state.static_next = setup.next_tracks;
+  for (int round = 1; round <= options.rounds; ++round) {
+    const RoundEnd end = DetectRound(round, setup, homography, options, executor, &state, &result);
+    if (end == RoundEnd::kFailed) return result;
+    if (end == RoundEnd::kDone) break;
+  }
   result.num_static_tracks = 0;
   for (const cv::Point2f& p : setup.forward_tracks.current)
     if (!InMaskRegion(result.mask, p)) ++result.num_static_tracks;

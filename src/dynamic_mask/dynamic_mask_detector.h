@@ -8,7 +8,6 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "core/camera.h"
 #include "core/executor.h"
 #include "core/image_area.h"
 #include "dynamic_mask/dynamic_mask_options.h"
@@ -30,11 +29,6 @@ struct DynamicMaskInput {
   // The part of every frame with image data (e.g. without the black border of undistortion); pixels
   // outside it in either frame of a difference are never dynamic. Empty = the whole image.
   ImageArea image_area;
-  // Optional frame t's depth (CV_32FC1 metres, 0 = none) and its camera: when given, the
-  // homography is fitted to the tracks of the rigid consensus only (rigid_consensus.h), and where
-  // no homography fits them the first round takes the one the consensus's motion induces.
-  cv::Mat current_depth;
-  Camera camera;
 };
 
 struct DynamicMaskResult {
@@ -54,7 +48,6 @@ struct DynamicMaskResult {
   PointTracks next_tracks;     // kTriplet: frame t's corners tracked into t+1 (previous = t, current = t+1),
                                // to pass as the next call's previous_tracks (saves one KLT run per frame)
   int num_static_tracks = 0;   // tracks outside the final mask
-  int num_rigid_tracks = -1;   // tracks of the rigid consensus (-1: no depth given, or no consensus)
   double dynamic_ratio = 0.0;  // fraction of mask pixels
 };
 

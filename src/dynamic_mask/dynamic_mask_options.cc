@@ -98,10 +98,6 @@ void BindConfigKeys(const std::string& prefix, DynamicMaskOptions* o, ConfigRegi
           "grey levels; Otsu's threshold is raised to at least this (0 = paper)");
   r->Bind(prefix + ".difference_level", &o->difference_level,
           "pyramid level of the differencing (0 = full size, the paper; 1 = half size)");
-  r->Bind(prefix + ".rigid_consensus", &o->rigid_consensus,
-          "fit the homography to the tracks that move with one rigid motion, found with frame t's depth and "
-          "counted by cells of a grid over the image, so that people holding most of the corners do not "
-          "become the camera's motion (false = the paper: all tracks)");
   r->Bind(prefix + ".erode_kernel_size", &o->erode_kernel_size, "pixels (paper: 4)");
   r->BindChoice(
       prefix + ".erode_shape", {"rect", "ellipse", "cross"}, [o] { return ToString(o->erode_shape); },

@@ -33,8 +33,6 @@ struct DynamicMaskOptions {
   int rounds = 2;                     // mask / homography re-estimation rounds (>= 1)
   double rounds_min_change_px = 0.5;  // px; a round whose H moves no image corner by more than this
                                       // (vs the previous round) ends the rounds, keeping that mask (0 = run all)
-  bool rigid_consensus = false;       // fit H to the tracks of the rigid motion that frame t's depth
-                                      // and a grid over the image pick (ego_motion/rigid_consensus.h); false = the paper
   // Throws InputError naming the key ("dynamic_mask.<field>") of the first bad value.
   void Check() const;
 };

@@ -16,7 +16,6 @@ void RunOptions::Check() const {
 OdometryConfig::OdometryConfig() {
   dynamic_mask.min_otsu_threshold = 25;  // where nothing moves, Otsu lands on sensor noise
   dynamic_mask.difference_level = 1;     // half size: a quarter of the pixels
-  dynamic_mask.rigid_consensus = true;   // the camera's motion where people hold most corners
   depth_change.enabled = true;
   map_occlusion.enabled = true;
   map_occlusion.grow_px = 20;

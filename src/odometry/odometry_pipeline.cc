@@ -19,16 +19,14 @@
 namespace dynvo {
 namespace {
 
-std::unique_ptr<MaskSource> MakeMaskSource(const Camera& camera, const OdometryConfig& config, const ImageArea& area,
-                                           Executor& executor) {
+std::unique_ptr<MaskSource> MakeMaskSource(const OdometryConfig& config, const ImageArea& area, Executor& executor) {
   if (config.mask_source == MaskSourceKind::kNone) return std::make_unique<NoMaskSource>();
   if (config.mask_source == MaskSourceKind::kGroundTruth)
     return std::make_unique<TruthMaskSource>(config.klt, config.homography, config.features.refill_from_background);
   if (config.mask_source == MaskSourceKind::kDetector)
     return std::make_unique<DetectorMaskSource>(std::make_unique<YoloDetector>(config.detector), config.detector,
                                                 config.klt, config.homography, executor);
-  return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, camera, area,
-                                                  executor);
+  return std::make_unique<DifferencingMaskSource>(config.klt, config.homography, config.dynamic_mask, area, executor);
 }
 
 // True when `path` names a file that can be opened.
@@ -80,7 +78,7 @@ OdometryPipeline::OdometryPipeline(const Camera& camera, const OdometryConfig& c
                                    Executor* executor, const LoopClosingOptions* loop_closing)
     : own_executor_(executor ? nullptr : std::make_unique<Executor>(0)),
       executor_(executor ? *executor : *own_executor_),
-      mask_source_(MakeMaskSource(camera, config, image_area, executor_)),
+      mask_source_(MakeMaskSource(config, image_area, executor_)),
       refinements_(MakeRefinements(camera, config, executor_, &notices_)),
       features_(camera, config.features, image_area, executor_),
       tracker_(camera, config.tracking),

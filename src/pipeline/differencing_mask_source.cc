@@ -8,14 +8,9 @@
 
 namespace dynvo {
 DifferencingMaskSource::DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography,
-                                               const DynamicMaskOptions& options, const Camera& camera,
-                                               const ImageArea& image_area, Executor& executor)
-    : klt_(klt),
-      homography_(homography),
-      options_(options),
-      camera_(camera),
-      image_area_(image_area),
-      executor_(executor) {}
+                                               const DynamicMaskOptions& options, const ImageArea& image_area,
+                                               Executor& executor)
+    : klt_(klt), homography_(homography), options_(options), image_area_(image_area), executor_(executor) {}
 
 DynamicMaskInput DifferencingMaskSource::InputFor(const RgbdFrame& frame, const cv::Mat& previous_gray,
                                                   const TrackingPyramid& previous_pyramid) const {
@@ -24,10 +19,6 @@ DynamicMaskInput DifferencingMaskSource::InputFor(const RgbdFrame& frame, const 
   input.current_gray = frame.gray;
   input.previous_pyramid = previous_pyramid;
   input.image_area = image_area_;
-  if (options_.rigid_consensus) {
-    input.current_depth = frame.depth;
-    input.camera = camera_;
-  }
   return input;
 }
 

@@ -16,7 +16,7 @@ class DifferencingMaskSource : public MaskSource {
  public:
   // The options must have passed Check(); `executor` must outlive the source.
   DifferencingMaskSource(const KltOptions& klt, const HomographyOptions& homography, const DynamicMaskOptions& options,
-                         const Camera& camera, const ImageArea& image_area, Executor& executor);
+                         const ImageArea& image_area, Executor& executor);
 
   // kFirstFrame on the first call; else kComputed or kFailed (with the detector's reason).
   MaskPacket Compute(const MaskSourceInput& input) override;
@@ -44,7 +44,6 @@ class DifferencingMaskSource : public MaskSource {
   KltOptions klt_;
   HomographyOptions homography_;
   DynamicMaskOptions options_;
-  Camera camera_;
   ImageArea image_area_;
   Executor& executor_;
   cv::Mat previous_gray_;

@@ -252,37 +252,6 @@ TEST(DetectDynamicMask, RoundsExcludeObjectTracksAndImproveTheHomography) {
   EXPECT_LT(FalsePositiveRate(fast.more.mask, scene.object_mask), 0.05);
 }
 
-TEST(DetectDynamicMask, WithDepthTheHomographyIsTheCamerasWhereAnObjectHoldsMostCorners) {
-  // A finely textured object over a third of the image holds most corners; the coarse background
-  // moves by a whole-image translation (the camera sliding along a wall 2 m away). A homography
-  // fitted to all tracks follows the object; given the depth, it is fitted to the tracks of the
-  // rigid consensus, whose one track per grid cell spreads over the image where the object's
-  // cluster on it.
-  SceneSpec spec;
-  spec.background = test::SmallMotion(0.0, 6.0, -2.0);
-  spec.object_at_t = cv::Rect(200, 140, 240, 200);
-  spec.object_texture_px = 3.5;
-  spec.background_texture_px = 6.0;
-  spec.velocity = {12, 6};
-  const Scene scene = MakeScene(spec);
-  DynamicMaskInput input = InputOf(scene, false);
-  const DynamicMaskResult without = DetectDynamicMask(input, KltOptions(), HomographyOptions(), DynamicMaskOptions());
-  ASSERT_TRUE(without.ok) << without.failure;
-  EXPECT_EQ(without.num_rigid_tracks, -1);
-  EXPECT_GT(test::MeanTransferDifference(without.current_from_previous, scene.background_current_from_previous, kImage),
-            5.0);  // the premise: it follows the object
-
-  input.current_depth = cv::Mat(kImage, CV_32FC1, cv::Scalar(2.0f));
-  const DynamicMaskResult with = DetectDynamicMask(input, KltOptions(), HomographyOptions(), DynamicMaskOptions());
-  ASSERT_TRUE(with.ok) << with.failure;
-  EXPECT_GT(with.num_rigid_tracks, 30);
-  EXPECT_LT(with.num_rigid_tracks, with.num_tracks / 2);
-  EXPECT_LT(test::MeanTransferDifference(with.current_from_previous, scene.background_current_from_previous, kImage),
-            0.2);
-  EXPECT_GT(Recall(with.mask, scene.object_mask), 0.7);
-  EXPECT_LT(FalsePositiveRate(with.mask, scene.object_mask), 0.05);
-}
-
 TEST(DetectDynamicMask, RoundsStopWhenHomographyBarelyMoves) {
   const Scene scene = MakeScene(SceneSpec());
   DynamicMaskOptions options;

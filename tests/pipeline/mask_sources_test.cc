@@ -23,7 +23,7 @@ MaskPacket ComputeOn(MaskSource& source, const RgbdFrame& frame, const RgbdFrame
 
 TEST(DifferencingMaskSource, FindsTheMoverAndTheCamerasMotion) {
   Executor executor(0);
-  DifferencingMaskSource source(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, executor);
+  DifferencingMaskSource source(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, executor);
   const MaskPacket first = ComputeOn(source, test::PanningFrame(0, true));
   EXPECT_EQ(first.status, MaskStatus::kFirstFrame);
   EXPECT_TRUE(first.mask.empty());
@@ -45,7 +45,7 @@ TEST(DifferencingMaskSource, FindsTheMoverAndTheCamerasMotion) {
 
 TEST(DifferencingMaskSource, AFrameWithoutTexturedTracksFailsWithItsReason) {
   Executor executor(0);
-  DifferencingMaskSource source(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, executor);
+  DifferencingMaskSource source(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, executor);
   RgbdFrame flat = test::PanningFrame(0, false);
   flat.gray.setTo(128);
   ComputeOn(source, flat);
@@ -60,8 +60,8 @@ TEST(DifferencingMaskSource, AFrameWithoutTexturedTracksFailsWithItsReason) {
 
 TEST(DifferencingMaskSource, TheLookAheadOnWorkersGivesWhatItGivesInTurn) {
   Executor workers(2), none(0);
-  DifferencingMaskSource ahead(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, workers);
-  DifferencingMaskSource in_turn(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, none);
+  DifferencingMaskSource ahead(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, workers);
+  DifferencingMaskSource in_turn(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, none);
   RgbdFrame frames[4];
   for (int i = 0; i < 4; ++i) frames[i] = test::PanningFrame(i, true);
   for (int i = 0; i < 4; ++i) {
@@ -75,8 +75,8 @@ TEST(DifferencingMaskSource, TheLookAheadOnWorkersGivesWhatItGivesInTurn) {
   }
   // A look-ahead for a frame that does not come is dropped: frame 3 after frame 1's look-ahead
   // for frame 2 is what a source that never looked ahead gives.
-  DifferencingMaskSource skipping(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, workers);
-  DifferencingMaskSource plain(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, Camera{}, ImageArea{}, none);
+  DifferencingMaskSource skipping(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, workers);
+  DifferencingMaskSource plain(KltOptions{}, HomographyOptions{}, DynamicMaskOptions{}, ImageArea{}, none);
   ComputeOn(skipping, frames[1]);
   skipping.LookAhead(frames[1], frames[2]);
   ComputeOn(plain, frames[1]);
