@@ -105,10 +105,8 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
     for (const std::unique_ptr<MaskRefinement>& refinement : refinements_) refinement->LookAhead(*next);
   }
   // 3. The pose from the static features against the local map; keyframes.
-  const FrameDepth depth{frame.depth, out.mask.mask};
   out.tracking = tracker_.Track(out.features.split.kept, frame.stamp, &out.features.split.removed,
-                                out.features.lines ? &*out.features.lines : nullptr,
-                                frame.depth.empty() ? nullptr : &depth);
+                                out.features.lines ? &*out.features.lines : nullptr);
   // 4. Local BA after a keyframe from a tracked pose (at once, or beside tracking and merged
   // some frames later); the tracker goes on from the refined pose.
   const bool tracked_keyframe = out.tracking.keyframe_inserted && out.tracking.state == TrackingState::kTracking;

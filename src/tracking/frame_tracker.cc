@@ -2,10 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <cstdio>
 #include <cstring>
-#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -67,7 +64,6 @@ FrameTracker::FrameTracker(const Camera& camera, const TrackerOptions& options)
     : camera_(camera), options_(options), map_(options.map) {
   camera_.Check("tracker");
   options_.Check();
-  if (const char* mode = std::getenv("DYNVO_DEPTH_ALIGN")) depth_alignment_mode_ = std::atoi(mode);
 }
 
 TrackingResult FrameTracker::Initialise(const FrameFeatures& features, double stamp) {
@@ -130,21 +126,14 @@ void FrameTracker::HandleFailure(const FrameFeatures& features, double stamp, co
 }
 
 TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked,
-                                   const FrameLines* lines, const FrameDepth* depth) {
+                                   const FrameLines* lines) {
   CheckFeatures(features);
   if (masked != nullptr) CheckFeatures(*masked);
   ++frame_index_;
   frame_lines_ = lines != nullptr ? *lines : FrameLines{};
   lines_matched_.assign(frame_lines_.size(), 0);
   line_observations_.clear();
-  const bool align = depth != nullptr && depth_alignment_mode_ > 0;
-  std::vector<Eigen::Vector3f> depth_samples;  // this frame's static depth, kept when it becomes a keyframe
-  if (align) depth_samples = SampleStaticDepth(camera_, *depth);
-  if (!initialized_) {
-    TrackingResult result = Initialise(features, stamp);
-    if (result.keyframe_inserted) KeepKeyframeDepth(std::move(depth_samples));
-    return result;
-  }
+  if (!initialized_) return Initialise(features, stamp);
 
   TrackingResult result;
   const Pose predicted_world_from_camera = motion_.Predict(stamp);
@@ -159,17 +148,12 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, 
   if (estimate.ok && options_.new_point_confirmations > 0) ConfirmNewMapPoints(used, matches, estimate, result);
   moving_features_.assign(used.size(), 0);
   if (estimate.ok && options_.coherent_motion.enabled) RejectCoherentMotion(used, matches, estimate, result);
-  Pose fallback_world_from_camera = predicted_world_from_camera;
-  if (align)
-    AlignWithStaticDepth(*depth, used, matches, predicted_world_from_camera, stamp, estimate,
-                         fallback_world_from_camera, failure, result);
   if (estimate.ok && frame_lines_.size() > 0 && !TurnsTooFastForLines(estimate, stamp))
     RefineWithLines(used, matches, estimate, result);
   if (estimate.ok)
     AcceptPose(used, stamp, matches, estimate, result);
   else
-    HandleFailure(features, stamp, fallback_world_from_camera, failure, result);
-  if (align && result.keyframe_inserted) KeepKeyframeDepth(std::move(depth_samples));
+    HandleFailure(features, stamp, predicted_world_from_camera, failure, result);
   motion_.Update(result.world_from_camera, stamp);
   result.map_keyframes = static_cast<int>(map_.num_keyframes());
   result.map_points = static_cast<int>(map_.num_points());
@@ -407,84 +391,6 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
     }
   }
   result.pose_ms += MillisecondsSince(start);
-}
-
-void FrameTracker::KeepKeyframeDepth(std::vector<Eigen::Vector3f> samples) {
-  keyframe_depth_samples_ = std::move(samples);
-  keyframe_depth_id_ = map_.keyframes().empty() ? -1 : map_.keyframes().back().id;
-}
-
-void FrameTracker::AlignWithStaticDepth(const FrameDepth& depth, const FrameFeatures& features,
-                                        const std::vector<Match>& matches, const Pose& predicted_world_from_camera,
-                                        double stamp, PoseEstimate& estimate,
-                                        Pose& fallback_world_from_camera, std::string& failure,
-                                        TrackingResult& result) const {
-  const auto keyframe = std::find_if(map_.keyframes().rbegin(), map_.keyframes().rend(),
-                                     [&](const Keyframe& k) { return k.id == keyframe_depth_id_; });
-  if (keyframe == map_.keyframes().rend()) return;  // the keyframe left the map: nothing to align
-  const SteadyClock::time_point start = SteadyClock::now();
-  const Pose keyframe_world_from_camera = keyframe->camera_from_world.inverse();
-  const Pose predicted_from_keyframe = predicted_world_from_camera.inverse() * keyframe_world_from_camera;
-  const std::optional<Pose> aligned =
-      AlignStaticDepth(camera_, keyframe_depth_samples_, depth, predicted_from_keyframe);
-  if (std::getenv("DYNVO_DEPTH_ALIGN_LOG"))
-    std::fprintf(stderr, "ALIGNTRY frame %lld kf %lld samples %zu aligned %d ok %d\n", static_cast<long long>(frame_index_),
-                 static_cast<long long>(keyframe_depth_id_), keyframe_depth_samples_.size(), aligned ? 1 : 0, estimate.ok ? 1 : 0);
-  if (aligned && std::getenv("DYNVO_DEPTH_ALIGN_LOG")) {
-    const Eigen::Vector3d a = aligned->inverse().translation(), p = predicted_from_keyframe.inverse().translation(),
-                          e = (estimate.camera_from_world * keyframe_world_from_camera).inverse().translation();
-    std::fprintf(stderr, "ICPPOSE frame %lld kf-from-cur pred %.3f %.3f %.3f icp %.3f %.3f %.3f est %.3f %.3f %.3f\n",
-                 static_cast<long long>(frame_index_), p.x(), p.y(), p.z(), a.x(), a.y(), a.z(), e.x(), e.y(), e.z());
-  }
-  if (!aligned) {
-    result.pose_ms += MillisecondsSince(start);
-    return;
-  }
-  const Pose aligned_camera_from_world = *aligned * keyframe->camera_from_world;
-  const auto agreement = [&](const Pose& camera_from_world) {
-    return DepthAgreement(camera_, keyframe_depth_samples_, depth, camera_from_world * keyframe_world_from_camera);
-  };
-  if (!estimate.ok) {
-    const std::optional<double> at_alignment = agreement(aligned_camera_from_world);
-    const std::optional<double> at_prediction = agreement(predicted_world_from_camera.inverse());
-    if (at_alignment && (!at_prediction || *at_alignment >= *at_prediction))
-      fallback_world_from_camera = aligned_camera_from_world.inverse();
-  } else if (depth_alignment_mode_ >= 2 && !TurnsTooFastForDepth(estimate, stamp)) {
-    const std::optional<double> at_estimate = agreement(estimate.camera_from_world);
-    const std::optional<double> at_alignment = agreement(aligned_camera_from_world);
-    if (at_estimate && at_alignment && *at_alignment > *at_estimate + 0.1) {
-      std::vector<Eigen::Vector3d> points;
-      std::vector<Eigen::Vector2d> pixels;
-      Correspondences(features, matches, points, pixels);
-      std::vector<uint8_t> use(points.size(), 0);
-      for (size_t i = 0; i < points.size(); ++i) {
-        const Eigen::Vector3d in_camera = aligned_camera_from_world * points[i];
-        use[i] = in_camera.z() > 0.0 &&
-                 (camera_.Project(in_camera) - pixels[i]).norm() <= options_.pose.ransac_threshold_px;
-      }
-      PoseEstimate candidate = RefinePose(points, pixels, camera_, aligned_camera_from_world, options_.pose, &use);
-      std::optional<double> at_candidate;
-      if (candidate.ok && candidate.num_inliers >= options_.min_matches)
-        at_candidate = agreement(candidate.camera_from_world);
-      if (std::getenv("DYNVO_DEPTH_ALIGN_LOG"))
-        std::fprintf(stderr, "ALIGN frame %lld agree est %.3f icp %.3f cand %.3f inl %d -> %d\n",
-                     static_cast<long long>(frame_index_), *at_estimate, *at_alignment,
-                     at_candidate ? *at_candidate : -1.0, estimate.num_inliers, candidate.num_inliers);
-      if (at_candidate && *at_candidate > *at_estimate + 0.1) {
-        estimate = std::move(candidate);
-      } else if (depth_alignment_mode_ >= 3) {
-        estimate.ok = false;
-        failure = "the static depth contradicts the pose";
-        fallback_world_from_camera = aligned_camera_from_world.inverse();
-      }
-    }
-  }
-  result.pose_ms += MillisecondsSince(start);
-}
-
-bool FrameTracker::TurnsTooFastForDepth(const PoseEstimate& estimate, double stamp) const {
-  const double max_rad_s = options_.max_ba_depth_rotation_deg_s * 3.14159265358979323846 / 180.0;
-  return max_rad_s > 0.0 && motion_.AngularSpeedTo(estimate.camera_from_world.inverse(), stamp) > max_rad_s;
 }
 
 bool FrameTracker::TurnsTooFastForLines(const PoseEstimate& estimate, double stamp) {

@@ -19,7 +19,6 @@
 #include "pose/projection_matcher.h"
 #include "tracking/coherent_motion.h"
 #include "tracking/motion_model.h"
-#include "tracking/static_depth_alignment.h"
 #include "tracking/tracking_state.h"
 
 namespace dynvo {
@@ -114,7 +113,7 @@ class FrameTracker {
   // they refine it with the points (PoseLineCost), and a keyframe keeps those with depth that
   // matched none. Throws InputError when the feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr,
-                       const FrameLines* lines = nullptr, const FrameDepth* depth = nullptr);
+                       const FrameLines* lines = nullptr);
 
   // The local map as of the last Track (and the mapper's work on it since).
   const LocalMap& map() const { return map_; }
@@ -176,19 +175,6 @@ class FrameTracker {
   // map, and their features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
-  // The last keyframe's static depth (keyframe_depth_samples_) aligned onto the frame's from
-  // the prediction: when the estimate failed, `fallback_world_from_camera` becomes that
-  // alignment (where it lines up at least as well as the prediction); when the estimate lies
-  // elsewhere, the pose refined from the alignment on the matches it explains replaces the
-  // estimate where clearly more of the static depth lines up at it.
-  // The frame just made the map's last keyframe: its static depth samples are aligned to next.
-  void KeepKeyframeDepth(std::vector<Eigen::Vector3f> samples);
-  void AlignWithStaticDepth(const FrameDepth& depth, const FrameFeatures& features, const std::vector<Match>& matches,
-                            const Pose& predicted_world_from_camera, double stamp, PoseEstimate& estimate,
-                            Pose& fallback_world_from_camera, std::string& failure, TrackingResult& result) const;
-  // True when the camera turns faster than max_ba_depth_rotation_deg_s from the last frame to
-  // `estimate`: the depth, taken at another moment than the colour, then misleads.
-  bool TurnsTooFastForDepth(const PoseEstimate& estimate, double stamp) const;
   // True when the camera turns faster than lines_max_rotation_deg_s from the last frame to
   // `estimate`: the frame's lines are then dropped (frame_lines_ emptied).
   bool TurnsTooFastForLines(const PoseEstimate& estimate, double stamp);
@@ -219,9 +205,6 @@ class FrameTracker {
   int frames_since_keyframe_ = 0;
   int reference_tracked_ = 0;  // pose inliers of the last keyframe (0 after a seed)
   int consecutive_lost_ = 0;
-  int depth_alignment_mode_ = 0;                         // experiment: 0 off, 1 lost frames, 2 also selection
-  std::vector<Eigen::Vector3f> keyframe_depth_samples_;  // the last keyframe's SampleStaticDepth ...
-  int64_t keyframe_depth_id_ = -1;                       // ... and its Keyframe::id
   // Scratch of the current frame: the map points handed to the matcher.
   std::vector<int64_t> visible_ids_;
   std::vector<Eigen::Vector3d> visible_points_;
