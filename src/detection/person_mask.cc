@@ -36,10 +36,14 @@ cv::Rect SearchRegion(const cv::Rect2d& box, double margin, cv::Size size) {
 }
 
 // The components of `band` (in-band depths of the region) that reach into `core` (the box, in
-// region coordinates) with at least `min_pixels` pixels.
-cv::Mat ComponentsInCore(const cv::Mat& band, const cv::Rect& core, int min_pixels) {
+// region coordinates) with at least `min_pixels` pixels, where components closer than `link_px`
+// count as one (a limb parted from the torso by a depth shadow).
+cv::Mat ComponentsInCore(const cv::Mat& band, const cv::Rect& core, int min_pixels, int link_px) {
+  cv::Mat linked = band;
+  if (link_px > 0)
+    cv::dilate(band, linked, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * link_px + 1, 2 * link_px + 1)));
   cv::Mat labels;
-  const int count = cv::connectedComponents(band, labels, 8, CV_32S);
+  const int count = cv::connectedComponents(linked, labels, 8, CV_32S);
   std::vector<int> in_core(static_cast<size_t>(count), 0);
   for (int y = core.y; y < core.y + core.height; ++y)
     for (int x = core.x; x < core.x + core.width; ++x) ++in_core[static_cast<size_t>(labels.at<int>(y, x))];
@@ -47,9 +51,37 @@ cv::Mat ComponentsInCore(const cv::Mat& band, const cv::Rect& core, int min_pixe
   for (int y = 0; y < band.rows; ++y)
     for (int x = 0; x < band.cols; ++x) {
       const int label = labels.at<int>(y, x);
-      if (label > 0 && in_core[static_cast<size_t>(label)] >= min_pixels) kept.at<uchar>(y, x) = 255;
+      if (label > 0 && band.at<uchar>(y, x) != 0 && in_core[static_cast<size_t>(label)] >= min_pixels)
+        kept.at<uchar>(y, x) = 255;
     }
   return kept;
+}
+
+// Where the silhouette may reach within `region` (the box grown by its widest reach): the box
+// grown by box_margin, and beside the box, over its rows above side_reach_rows of its height, the
+// side reach (an arm held out; the floor at the feet's depth stays out).
+cv::Mat ReachableArea(const cv::Rect2d& box, const cv::Rect& region, const PersonMaskOptions& options,
+                      cv::Size size) {
+  cv::Mat reachable = cv::Mat::zeros(region.size(), CV_8UC1);
+  const cv::Rect near = SearchRegion(box, options.box_margin, size);
+  reachable(cv::Rect(near.tl() - region.tl(), near.size())).setTo(255);
+  const int top = std::max(region.y, static_cast<int>(box.y));
+  const int bottom = std::min(region.br().y, static_cast<int>(box.y + options.side_reach_rows * box.height));
+  if (options.side_reach > options.box_margin && bottom > top)
+    reachable(cv::Rect(0, top - region.y, region.width, bottom - top)).setTo(255);
+  return reachable;
+}
+
+// What of `silhouette` (over `region`) lies beyond `near` (the box grown by its margin) stays only
+// when it is limb-sized: at most `limb_share` of what lies within; more is background as near as
+// the person (a desk, a wall they lean on), and the silhouette is cut back to `near`.
+void KeepLimbsBesideTheBox(const cv::Rect& near, const cv::Rect& region, double limb_share, cv::Mat* silhouette) {
+  const cv::Rect near_in_region(near.tl() - region.tl(), near.size());
+  const int within = cv::countNonZero((*silhouette)(near_in_region));
+  if (cv::countNonZero(*silhouette) - within <= limb_share * within) return;
+  cv::Mat kept = cv::Mat::zeros(silhouette->size(), CV_8UC1);
+  (*silhouette)(near_in_region).copyTo(kept(near_in_region));
+  *silhouette = kept;
 }
 
 // Where an upright person's head and torso are in its box: the middle half of the columns, rows
@@ -84,6 +116,13 @@ double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOp
   return 0.0;  // not reached: the largest bin is a peak
 }
 
+PersonMaskOptions ArmsBesideTheBox() {
+  PersonMaskOptions options;
+  options.side_reach = 0.7;
+  options.link_px = 5;
+  return options;
+}
+
 cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const PersonMaskOptions& options) {
   CV_Assert(depth.type() == CV_32FC1);
   cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8UC1);
@@ -94,12 +133,14 @@ cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const Per
     mask(core).setTo(255);
     return mask;
   }
-  const cv::Rect region = SearchRegion(box, options.box_margin, depth.size());
+  const cv::Rect region = SearchRegion(box, std::max(options.box_margin, options.side_reach), depth.size());
   const double half_band = std::max(options.band_m, options.band_ratio * person);
   const cv::Mat region_depth = depth(region);
-  const cv::Mat band = (region_depth >= person - half_band) & (region_depth <= person + half_band);
+  const cv::Mat band = (region_depth >= person - half_band) & (region_depth <= person + half_band) &
+                       ReachableArea(box, region, options, depth.size());
   const cv::Rect core_in_region(core.tl() - region.tl(), core.size());
-  cv::Mat silhouette = ComponentsInCore(band, core_in_region, std::max(1, core.area() / 50));
+  cv::Mat silhouette = ComponentsInCore(band, core_in_region, std::max(1, core.area() / 50), options.link_px);
+  KeepLimbsBesideTheBox(SearchRegion(box, options.box_margin, depth.size()), region, options.limb_share, &silhouette);
   // Measurement holes at the silhouette's edge (hair, depth shadows) join it; then the margin.
   const cv::Mat kernel =
       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * options.grow_px + 1, 2 * options.grow_px + 1));

@@ -43,7 +43,7 @@ class PeopleRefinement : public MaskRefinement {
  private:
   Camera camera_;
   DetectionRunner runner_;
-  PersonMaskOptions person_mask_;
+  PersonMaskOptions person_mask_ = ArmsBesideTheBox();
   MovingPeople moving_;
   CarriedDetections people_;  // the last frame's people
 };

@@ -1,5 +1,7 @@
 #include "detection/person_mask.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -62,6 +64,59 @@ TEST(PersonMask, ADeskInFrontOfTheLegsIsNotThePerson) {
   const cv::Mat mask = PersonMaskFromBox(s.depth, s.box);
   EXPECT_EQ(cv::countNonZero(mask(cv::Rect(200, 300, 240, 180))), 0);  // the desk below the waist
   EXPECT_GT(cv::countNonZero(mask & s.person), 0.99 * cv::countNonZero(s.person(cv::Rect(0, 0, 640, 260))));
+}
+
+// A person walking across the view with an arm held out: the detector boxed the body only. The
+// arm, at the body's depth, is parted from the shoulder by a depth shadow 5 px wide and reaches
+// half the box's width beyond its side, down to below the waist. The floor at the feet's depth
+// runs across the image under the box's lowest rows.
+struct ArmScene {
+  cv::Mat depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(4.0f));
+  cv::Mat arm = cv::Mat::zeros(480, 640, CV_8UC1);
+  cv::Rect2d box{250, 80, 140, 380};
+};
+
+ArmScene MakeArmScene() {
+  ArmScene s;
+  s.depth(cv::Rect(280, 80, 80, 380)).setTo(2.0f);  // head, body and legs
+  cv::line(s.arm, {370, 160}, {440, 330}, 255, 10);  // 5 px beyond the body
+  s.depth.setTo(2.05f, s.arm);
+  s.depth(cv::Rect(0, 450, 640, 30)).setTo(2.1f);  // the floor beside the feet, as near as the person
+  return s;
+}
+
+TEST(PersonMask, AnArmHeldOutBesideTheBoxIsThePerson) {
+  const ArmScene s = MakeArmScene();
+  const cv::Mat mask = PersonMaskFromBox(s.depth, s.box, ArmsBesideTheBox());
+  EXPECT_GT(cv::countNonZero(mask & s.arm), 0.99 * cv::countNonZero(s.arm));
+  // The floor beside the feet stays out beyond the box's margin, though it touches the feet.
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(0, 462, 200, 18))), 0);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(440, 462, 200, 18))), 0);
+  // Only the box's margin and no bridge (the defaults): the arm is lost.
+  const cv::Mat boxed_mask = PersonMaskFromBox(s.depth, s.box, PersonMaskOptions());
+  EXPECT_LT(cv::countNonZero(boxed_mask & s.arm), 0.5 * cv::countNonZero(s.arm));
+}
+
+TEST(PersonMask, SomethingAsNearBesideThePersonButApartIsNot) {
+  // A pillar at the person's depth, 20 px beside the arm and within the side reach.
+  ArmScene s = MakeArmScene();
+  s.depth(cv::Rect(470, 100, 30, 300)).setTo(2.0f);
+  const cv::Mat mask = PersonMaskFromBox(s.depth, s.box, ArmsBesideTheBox());
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(470 + PersonMaskOptions().grow_px + 1, 100, 20, 300))), 0);
+  EXPECT_GT(cv::countNonZero(mask & s.arm), 0.99 * cv::countNonZero(s.arm));
+}
+
+TEST(PersonMask, MoreThanALimbBesideTheBoxIsBackground) {
+  // A desk top at the person's depth, touching the arm and reaching across beside the box: far
+  // more than a limb. The silhouette is cut back to the box's margin; what the box holds stays.
+  ArmScene s = MakeArmScene();
+  s.depth(cv::Rect(360, 300, 280, 60)).setTo(2.1f);
+  const PersonMaskOptions options = ArmsBesideTheBox();
+  const cv::Mat mask = PersonMaskFromBox(s.depth, s.box, options);
+  const int margin = static_cast<int>(std::ceil(options.box_margin * s.box.width)) + options.grow_px + 1;
+  const int beyond = static_cast<int>(s.box.br().x) + margin;
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(beyond, 0, 640 - beyond, 480))), 0);
+  EXPECT_GT(cv::countNonZero(mask(cv::Rect(280, 80, 80, 380))), 0.99 * 80 * 380);  // the body
 }
 
 TEST(PersonMask, WithoutDepthTheBoxIsTheMask) {
