@@ -4,7 +4,6 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "detection/letterbox.h"
 
 namespace dynvo {
 namespace {
@@ -37,9 +36,9 @@ std::vector<Detection> DecodeYoloOutput(const cv::Mat& output, YoloLayout layout
   const cv::Mat rows = CandidateRows(output, layout);
   const int first_class = layout == YoloLayout::kColumns ? 4 : 5;
   if (rows.cols <= first_class) throw InputError("detector output: rows too short for boxes and class scores");
-  // Box coordinates to input pixels (Darknet's are relative to the input), then to the image's.
-  const double unit = layout == YoloLayout::kDarknetRegion ? static_cast<double>(input_size) : 1.0;
-  const Letterbox letterbox = FitLetterbox(image, input_size);
+  // Box coordinates to image pixels: relative (Darknet) or in the square input's pixels.
+  const double unit = layout == YoloLayout::kDarknetRegion ? 1.0 : static_cast<double>(input_size);
+  const double sx = image.width / unit, sy = image.height / unit;
   const cv::Rect2d frame(0, 0, image.width, image.height);
   std::vector<Detection> found;
   for (int r = 0; r < rows.rows; ++r) {
@@ -50,9 +49,8 @@ std::vector<Detection> DecodeYoloOutput(const cv::Mat& output, YoloLayout layout
     if (layout == YoloLayout::kRows) score *= row[4];
     if (score < options.confidence) continue;
     if (std::find(options.classes.begin(), options.classes.end(), best) == options.classes.end()) continue;
-    const double w = row[2] * unit, h = row[3] * unit;
-    const cv::Rect2d box =
-        letterbox.ToImage(cv::Rect2d(row[0] * unit - w / 2, row[1] * unit - h / 2, w, h)) & frame;
+    const double w = row[2] * sx, h = row[3] * sy;
+    const cv::Rect2d box = cv::Rect2d(row[0] * sx - w / 2, row[1] * sy - h / 2, w, h) & frame;
     if (box.area() <= 0.0) continue;
     found.push_back({box, score, best});
   }
@@ -106,10 +104,8 @@ YoloDetector::YoloDetector(const DetectorOptions& options) : options_(options) {
 
 std::vector<Detection> YoloDetector::Detect(const cv::Mat& bgr) {
   if (bgr.empty() || bgr.type() != CV_8UC3) throw InputError("detector: expected a CV_8UC3 BGR image");
-  const int n = options_.input_size;
-  const cv::Mat input = LetterboxImage(bgr, FitLetterbox(bgr.size(), n), n);
-  const cv::Mat blob =
-      cv::dnn::blobFromImage(input, 1.0 / 255.0, cv::Size(n, n), cv::Scalar(), /*swapRB=*/true, /*crop=*/false);
+  const cv::Mat blob = cv::dnn::blobFromImage(bgr, 1.0 / 255.0, cv::Size(options_.input_size, options_.input_size),
+                                              cv::Scalar(), /*swapRB=*/true, /*crop=*/false);
   std::vector<cv::Mat> outputs;
   try {
     net_.setInput(blob);

@@ -1,8 +1,8 @@
 #pragma once
 // A YOLO object detector on OpenCV's DNN module (CPU): the movable objects (people) of a colour
 // image as scored boxes. Darknet models (.cfg + .weights) and ONNX exports of the YOLOv5 and
-// YOLOv8 families load by path. The image is letterboxed into the square network input
-// (detection/letterbox.h: its aspect kept, as the models are trained), and boxes map back by it.
+// YOLOv8 families load by path. The image is resized to the square network input (no
+// letterbox), so boxes map back by the two axis scales.
 
 #include <string>
 #include <vector>
@@ -24,8 +24,7 @@ enum class YoloLayout {
 };
 
 // The candidates of one output tensor of a movable class (options.classes) scoring at least
-// options.confidence, in pixels of the image letterboxed into the input (FitLetterbox), clipped
-// to it; no NMS. Throws InputError when the tensor's shape does not
+// options.confidence, in image pixels; no NMS. Throws InputError when the tensor's shape does not
 // fit the layout.
 std::vector<Detection> DecodeYoloOutput(const cv::Mat& output, YoloLayout layout, cv::Size image, int input_size,
                                         const DetectorOptions& options);
