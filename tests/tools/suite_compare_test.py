@@ -5,6 +5,8 @@ side ran, --configs, and the errors of CSVs of two splits or without a row in co
 Run by ctest (test suite_compare_test; env: DYNVO_SOURCE_DIR)."""
 import csv
 import os
+import re
+import statistics
 import tempfile
 import unittest
 
@@ -17,6 +19,20 @@ def row(sequence, config, rpe, recall="-", precision="-", still="-", status="ok"
     values.update(split=split, sequence=sequence, kind="synthetic", twin="t", config=config, status=status,
                   frames="60", rpe_m_s=rpe, mask_recall=recall, mask_precision=precision, still_kept=still)
     return values
+
+
+def seeded_row(sequence, seeds):
+    """A dynvo row over RANSAC seeds with these per-seed RPEs."""
+    values = row(sequence, "dynvo", repr(statistics.median(seeds)))
+    values.update(seeds=str(len(seeds)), rpe_min_m_s=repr(min(seeds)), rpe_max_m_s=repr(max(seeds)),
+                  rpe_seeds_m_s=";".join(repr(v) for v in seeds))
+    return values
+
+
+def interval(out):
+    """The (low, high) of suite-compare's interval over the seeds."""
+    found = re.search(r"give ([0-9.]+)x-([0-9.]+)x\.", out)
+    return float(found.group(1)), float(found.group(2))
 
 
 class SuiteCompare(unittest.TestCase):
@@ -48,8 +64,8 @@ class SuiteCompare(unittest.TestCase):
             row("d", "dynvo", "0.05"), row("a", "paper", "0.03"), row("n", "dynvo", "-", status=suite.NOT_RUN)])
         code, out, err = self.compare(before, after)
         self.assertEqual(code, 0, err)
-        self.assertIn("| a | 0.0200 | 0.0100 | 0.50x | 0.90 -> 0.80 | 0.50 -> 0.70 | - |", out)
-        self.assertIn("| b | 0.0400 | 0.0800 | 2.00x | - | - | 0.60 -> 0.90 |", out)
+        self.assertIn("| a | 0.0200 | 0.0100 | 0.50x | - | 0.90 -> 0.80 | 0.50 -> 0.70 | - |", out)
+        self.assertIn("| b | 0.0400 | 0.0800 | 2.00x | - | - | - | 0.60 -> 0.90 |", out)
         self.assertNotIn("| c |", out)  # before only
         self.assertNotIn("| d |", out)  # after only
         self.assertNotIn("| n |", out)  # not run
@@ -59,6 +75,44 @@ class SuiteCompare(unittest.TestCase):
         code, out, _ = self.compare(before, after, "--configs", "paper")
         self.assertEqual(code, 0)
         self.assertNotIn("dynvo", out)
+
+    def test_seed_ranges_apart_and_the_interval_over_the_seeds(self):
+        before = self.write("before.csv", [seeded_row("a", [0.020, 0.022, 0.021]),
+                                           seeded_row("b", [0.010, 0.030, 0.020])])
+        # a: every seed after below every seed before; b: the same seeds again.
+        after = self.write("after.csv", [seeded_row("a", [0.011, 0.010, 0.012]),
+                                         seeded_row("b", [0.020, 0.010, 0.030])])
+        code, out, err = self.compare(before, after)
+        self.assertEqual(code, 0, err)
+        self.assertIn("| a | 0.0210 | 0.0110 | 0.52x | apart |", out)
+        self.assertIn("| b | 0.0200 | 0.0200 | 1.00x | overlap |", out)
+        low, high = interval(out)
+        # Any redraw: a's ratio within [0.010 / 0.022, 0.012 / 0.020], b's within [1/3, 3].
+        self.assertGreaterEqual(low, (0.010 / 0.022 / 3) ** 0.5)
+        self.assertLessEqual(high, (0.012 / 0.020 * 3) ** 0.5)
+        self.assertLess(low, (0.011 / 0.021) ** 0.5)  # the medians' own mean lies inside
+        self.assertGreater(high, (0.011 / 0.021) ** 0.5)
+        self.assertEqual(self.compare(before, after)[1], out)  # the same CSVs, the same interval
+        # The same seeds on both sides: a change within the seeds' noise, the interval holds 1.0x.
+        code, out, _ = self.compare(before, before)
+        low, high = interval(out)
+        self.assertLess(low, 1.0)
+        self.assertGreater(high, 1.0)
+        # Without the per-seed RPEs (single runs, older CSVs) there is no interval, and no error.
+        plain = self.write("plain.csv", [row("a", "dynvo", "0.02"), row("b", "dynvo", "0.02")])
+        code, out, err = self.compare(plain, after)
+        self.assertEqual(code, 0, err)
+        self.assertIn("dynvo: no interval over the seeds", out)
+
+    def test_a_bad_per_seed_value_names_the_csv_and_row(self):
+        good = self.write("good.csv", [seeded_row("a", [0.02, 0.03])])
+        bad_row = seeded_row("a", [0.02, 0.03])
+        bad_row["rpe_seeds_m_s"] = "0.02;x"
+        bad = self.write("bad.csv", [bad_row])
+        code, _, err = self.compare(good, bad)
+        self.assertEqual(code, 1)
+        self.assertIn("bad.csv: a dynvo: rpe_seeds_m_s is not numbers separated by ';': '0.02;x'", err)
+        self.assertNotIn("Traceback", err)
 
     def test_two_splits_or_nothing_in_common_is_an_error(self):
         dev = self.write("dev.csv", [row("a", "dynvo", "0.02")])

@@ -138,7 +138,9 @@ class Table(unittest.TestCase):
         twin = suite.combine_seeds([result(0.01, 0.1, None, 5.0), result(0.02, 0.1, None, 5.0)])
         cells = suite.result_row(spec_row, "paper", combined, twin)
         self.assertEqual((cells["seeds"], cells["rpe_min_m_s"], cells["rpe_max_m_s"]), ("3", "0.01", "0.03"))
+        self.assertEqual(cells["rpe_seeds_m_s"], "0.03;0.01;0.02")  # in seed order, for suite-compare
         self.assertAlmostEqual(float(cells["ratio"]), 0.02 / 0.015)  # median over the twin's median
+        self.assertEqual(suite.result_row(spec_row, "paper", runs[0], twin)["rpe_seeds_m_s"], "-")  # one run
 
     def test_table_over_seeds(self):
         rows = hand_made_rows()
@@ -273,8 +275,8 @@ class WithFakeBinaries(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(os.path.join(self.tmp.name, "results", "suite_dev.csv")) as f:
             rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
-        self.assertEqual({(r["seeds"], r["rpe_m_s"], r["rpe_min_m_s"], r["rpe_max_m_s"], r["ratio"]) for r in rows},
-                         {("2", "0.02", "0.02", "0.02", "2.0")})
+        self.assertEqual({(r["seeds"], r["rpe_m_s"], r["rpe_min_m_s"], r["rpe_max_m_s"], r["ratio"], r["rpe_seeds_m_s"])
+                          for r in rows}, {("2", "0.02", "0.02", "0.02", "2.0", "0.02;0.02")})
         with open(os.path.join(self.bin, "cli.log")) as f:
             calls = f.read().splitlines()
         self.assertEqual(len(calls), 2 * 2 * 3 * (len(suite.PRESETS) + 1))  # seeds x configs x paths x sequences

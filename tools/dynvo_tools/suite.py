@@ -123,6 +123,7 @@ class RunResult:
     ms_p90: float
     seeds: int = 1                  # runs (RANSAC seeds) the figures are the medians of
     rpe_range: Optional[tuple[float, float]] = None  # over the seeds: min, max
+    rpe_seeds: tuple[float, ...] = ()  # per seed, in seed order (several seeds only)
 
 
 def short_name(real_folder: str) -> str:
@@ -234,15 +235,18 @@ def combine_seeds(results: list[RunResult]) -> RunResult:
                      ate_m=statistics.median(r.ate_m for r in results), mask=mask,
                      ms_median=statistics.median(r.ms_median for r in results),
                      ms_p90=statistics.median(r.ms_p90 for r in results), seeds=len(results),
-                     rpe_range=(min(rpe), max(rpe)))
+                     rpe_range=(min(rpe), max(rpe)), rpe_seeds=tuple(rpe))
 
 
 # ---------------------------------------------------------------- results CSV
 
 CSV_COLUMNS = ("split", "sequence", "kind", "twin", "config", "status", "frames", "rpe_m_s",
                "twin_rpe_m_s", "ratio", "ate_m", "mask_precision", "mask_recall", "mask_iou",
-               "still_kept", "ms_median", "ms_p90", "overrides", "seeds", "rpe_min_m_s", "rpe_max_m_s")
-OPTIONAL_COLUMNS = ("overrides", "still_kept", "seeds", "rpe_min_m_s", "rpe_max_m_s")  # not in older CSVs
+               "still_kept", "ms_median", "ms_p90", "overrides", "seeds", "rpe_min_m_s", "rpe_max_m_s",
+               "rpe_seeds_m_s")
+OPTIONAL_COLUMNS = ("overrides", "still_kept", "seeds", "rpe_min_m_s", "rpe_max_m_s",
+                    "rpe_seeds_m_s")  # not in older CSVs
+SEED_SEPARATOR = ";"  # between the per-seed RPEs of rpe_seeds_m_s
 MASK_KEYS = ("precision", "recall", "iou")
 
 
@@ -267,6 +271,7 @@ def result_row(row: RowSpec, config: str, result: Optional[RunResult],
                   ms_p90=result.ms_p90, seeds=result.seeds,
                   rpe_min_m_s=result.rpe_range[0] if result.rpe_range else None,
                   rpe_max_m_s=result.rpe_range[1] if result.rpe_range else None,
+                  rpe_seeds_m_s=SEED_SEPARATOR.join(repr(v) for v in result.rpe_seeds) or None,
                   ratio=result.rpe_m_s / twin.rpe_m_s if twin.rpe_m_s > 0 else None)
     for key in MASK_KEYS:
         values["mask_" + key] = result.mask[key] if result.mask else None
@@ -277,7 +282,7 @@ def result_row(row: RowSpec, config: str, result: Optional[RunResult],
 def write_csv(path: str, rows: list[dict[str, str]]) -> None:
     """The results CSV of one split, CSV_COLUMNS in order."""
     with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS, lineterminator="\n")
+        writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS, lineterminator="\n", restval="-")
         writer.writeheader()
         writer.writerows(rows)
 
@@ -321,6 +326,18 @@ def csv_number(row: dict[str, str], key: str, path: str) -> Optional[float]:
 def csv_optional(row: dict[str, str], key: str, path: str) -> Optional[float]:
     """csv_number of a column that older CSVs may lack (None then, as for "-")."""
     return csv_number(row, key, path) if key in row else None
+
+
+def csv_seed_values(row: dict[str, str], path: str) -> tuple[float, ...]:
+    """The per-seed RPEs of a row (rpe_seeds_m_s); () when the CSV or the row has none."""
+    text = row.get("rpe_seeds_m_s") or "-"
+    if text == "-":
+        return ()
+    try:
+        return tuple(float(v) for v in text.split(SEED_SEPARATOR))
+    except ValueError:
+        raise table_error(path, "%s %s: rpe_seeds_m_s is not numbers separated by %r: %r" % (
+            row["sequence"], row["config"], SEED_SEPARATOR, text)) from None
 
 
 def seeds_of(rows: list[dict[str, str]]) -> int:

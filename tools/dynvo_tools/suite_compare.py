@@ -1,9 +1,11 @@
 """The `suite-compare` command: two results CSVs of the benchmark suite (the same split, before
 and after a change) row by row. Per config: each sequence's per-second RPE before and after and
 their ratio, the mask's recall, precision and still-kept share before and after, and the
-geometric mean of the RPE ratios over the rows both ran. How a change is judged (bench/README.md):
-on dev to choose, on validation to report; over RANSAC seeds (`suite --seeds`) when rows are
-chaotic.
+geometric mean of the RPE ratios over the rows both ran. Over RANSAC seeds (`suite --seeds`):
+per row whether the seeds' RPE ranges before and after are apart, and, when both CSVs hold each
+row's per-seed RPEs, the interval the geometric mean moves in when each row's seeds are drawn
+again (a bootstrap): a change whose interval holds 1.0x is within the seeds' noise. How a change
+is judged (bench/README.md): on dev to choose, on validation to report.
 
   python3 -m dynvo_tools suite-compare BEFORE.csv AFTER.csv [--configs a,b]
   (or bash bench/suite.sh compare BEFORE.csv AFTER.csv)
@@ -13,11 +15,16 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import random
+import statistics
 from dataclasses import dataclass
 from typing import Optional
 
 from .common import ToolError, display_path
-from .suite import comma_list, csv_number, csv_optional, read_results
+from .suite import comma_list, csv_number, csv_optional, csv_seed_values, read_results
+
+BOOTSTRAP_DRAWS = 2000  # resamples of the seeds behind the interval
+BOOTSTRAP_SHARE = 0.90  # of them inside it
 
 
 @dataclass(frozen=True)
@@ -28,6 +35,8 @@ class RowChange:
     recall: tuple[Optional[float], Optional[float]]
     precision: tuple[Optional[float], Optional[float]]
     still_kept: tuple[Optional[float], Optional[float]]
+    ranges: tuple[Optional[tuple[float, float]], Optional[tuple[float, float]]] = (None, None)  # seeds' min, max
+    seeds: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())  # the per-seed RPEs, before and after
 
     @property
     def ratio(self) -> float:
@@ -58,16 +67,51 @@ def changes(before_path: str, after_path: str, configs: Optional[tuple[str, ...]
             continue
         pairs = [(csv_optional(old, column, before_path), csv_optional(new, column, after_path))
                  for column in ("mask_recall", "mask_precision", "still_kept")]
-        by_config.setdefault(key[0], []).append(RowChange(key[1], (rpe_before, rpe_after), *pairs))
+        ranges = (seed_range(old, before_path), seed_range(new, after_path))
+        seeds = (csv_seed_values(old, before_path), csv_seed_values(new, after_path))
+        by_config.setdefault(key[0], []).append(RowChange(key[1], (rpe_before, rpe_after), *pairs, ranges, seeds))
     if not by_config:
         raise ToolError("%s and %s have no row in common%s" % (
             display_path(before_path), display_path(after_path), " for --configs" if configs else ""))
     return by_config
 
 
+def seed_range(row: dict[str, str], path: str) -> Optional[tuple[float, float]]:
+    """The row's RPE over its seeds, (min, max); None for a single run or an older CSV."""
+    low, high = csv_optional(row, "rpe_min_m_s", path), csv_optional(row, "rpe_max_m_s", path)
+    return None if low is None or high is None else (low, high)
+
+
+def ranges_apart(change: RowChange) -> str:
+    """"apart" when every seed after is below (or above) every seed before, "overlap" when not,
+    "-" without the ranges."""
+    before, after = change.ranges
+    if before is None or after is None:
+        return "-"
+    return "apart" if after[1] < before[0] or after[0] > before[1] else "overlap"
+
+
 def geometric_mean(values: list[float]) -> float:
     """exp(mean(log v)) of positive values."""
     return math.exp(sum(math.log(v) for v in values) / len(values))
+
+
+def seed_interval(rows: list[RowChange]) -> Optional[tuple[float, float]]:
+    """The central BOOTSTRAP_SHARE of the geometric means of the RPE ratios when each row's
+    seeds, before and after, are drawn again with replacement (BOOTSTRAP_DRAWS times, a fixed
+    RNG seed: the same CSVs give the same interval); None unless every row has two or more
+    per-seed RPEs on both sides."""
+    if any(len(side) < 2 for r in rows for side in r.seeds):
+        return None
+    rng = random.Random(1)
+
+    def redrawn(values: tuple[float, ...]) -> float:
+        return statistics.median(rng.choices(values, k=len(values)))
+
+    means = sorted(geometric_mean([redrawn(r.seeds[1]) / redrawn(r.seeds[0]) for r in rows])
+                   for _ in range(BOOTSTRAP_DRAWS))
+    tail = int(round(BOOTSTRAP_DRAWS * (1.0 - BOOTSTRAP_SHARE) / 2))
+    return means[tail], means[BOOTSTRAP_DRAWS - 1 - tail]
 
 
 def before_after(values: tuple[Optional[float], Optional[float]]) -> str:
@@ -83,13 +127,18 @@ def markdown(by_config: dict[str, list[RowChange]], before_path: str, after_path
         os.path.basename(before_path), os.path.basename(after_path))]
     for config, rows in by_config.items():
         text += ["", "**%s**" % config, "",
-                 "| sequence | RPE before | RPE after | after/before | mask recall | mask precision | still kept |",
-                 "|---|---|---|---|---|---|---|"]
-        text += ["| %s | %.4f | %.4f | %.2fx | %s | %s | %s |" % (
-            r.sequence, r.rpe[0], r.rpe[1], r.ratio, before_after(r.recall), before_after(r.precision),
-            before_after(r.still_kept)) for r in rows]
+                 "| sequence | RPE before | RPE after | after/before | seeds | mask recall | mask precision |"
+                 " still kept |",
+                 "|---|---|---|---|---|---|---|---|"]
+        text += ["| %s | %.4f | %.4f | %.2fx | %s | %s | %s | %s |" % (
+            r.sequence, r.rpe[0], r.rpe[1], r.ratio, ranges_apart(r), before_after(r.recall),
+            before_after(r.precision), before_after(r.still_kept)) for r in rows]
         text += ["", "%s: geometric mean of after/before %.3fx over %d rows." % (
             config, geometric_mean([r.ratio for r in rows]), len(rows))]
+        interval = seed_interval(rows)
+        text += ["%s: with the seeds of every row drawn again, %d%% of %d draws give %.3fx-%.3fx." % (
+            config, round(100 * BOOTSTRAP_SHARE), BOOTSTRAP_DRAWS, *interval) if interval else
+            "%s: no interval over the seeds (each row's per-seed RPEs are not in both CSVs)." % config]
     return "\n".join(text) + "\n"
 
 
