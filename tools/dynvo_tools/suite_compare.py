@@ -65,11 +65,12 @@ def changes(before_path: str, after_path: str, configs: Optional[tuple[str, ...]
         rpe_before, rpe_after = csv_number(old, "rpe_m_s", before_path), csv_number(new, "rpe_m_s", after_path)
         if rpe_before is None or rpe_after is None or rpe_before <= 0:
             continue
-        pairs = [(csv_optional(old, column, before_path), csv_optional(new, column, after_path))
-                 for column in ("mask_recall", "mask_precision", "still_kept")]
-        ranges = (seed_range(old, before_path), seed_range(new, after_path))
-        seeds = (csv_seed_values(old, before_path), csv_seed_values(new, after_path))
-        by_config.setdefault(key[0], []).append(RowChange(key[1], (rpe_before, rpe_after), *pairs, ranges, seeds))
+        recall, precision, still_kept = [(csv_optional(old, column, before_path), csv_optional(new, column, after_path))
+                                         for column in ("mask_recall", "mask_precision", "still_kept")]
+        by_config.setdefault(key[0], []).append(RowChange(
+            key[1], (rpe_before, rpe_after), recall, precision, still_kept,
+            ranges=(seed_range(old, before_path), seed_range(new, after_path)),
+            seeds=(csv_seed_values(old, before_path), csv_seed_values(new, after_path))))
     if not by_config:
         raise ToolError("%s and %s have no row in common%s" % (
             display_path(before_path), display_path(after_path), " for --configs" if configs else ""))
