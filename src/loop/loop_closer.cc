@@ -3,6 +3,8 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
+#include "loop/global_bundle_adjustment.h"
 
 namespace dynvo {
 
@@ -11,6 +13,8 @@ void LoopClosingOptions::Check() const {
   pose_graph.Check();
   RequireOption(depth_reduction >= 1, "loop", "depth_reduction", ">= 1", depth_reduction);
   map.Check();
+  bundle_adjustment.Check();
+  RequireOption(max_points_per_loop >= 1, "loop", "max_points_per_loop", ">= 1", max_points_per_loop);
 }
 
 LoopCloser::LoopCloser(const Camera& camera, const LoopClosingOptions& options, Executor* executor)
@@ -36,9 +40,11 @@ void LoopCloser::Observe(const LoopFrame& frame) {
   if (frame.keyframe) {
     if (frame.static_features == nullptr)
       throw InputError("LoopCloser::Observe: keyframe " + std::to_string(frame.frame) + " without its features");
-    auto made = std::make_shared<const LoopKeyframe>(MakeLoopKeyframe(
-        keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features, frame.depth,
-        options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get()));
+    LoopKeyframe keyframe =
+        MakeLoopKeyframe(keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features,
+                         frame.depth, options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get());
+    if (frame.observations != nullptr) keyframe.observations = *frame.observations;
+    auto made = std::make_shared<const LoopKeyframe>(std::move(keyframe));
     keyframes_.push_back(made);
     // Each search (and map sample) waits for the one before: the database sees the keyframes in
     // order, whatever thread runs them, so the loops found never depend on timing.
@@ -83,6 +89,15 @@ LoopClosingResult LoopCloser::Finish() {
     result.keyframe_frames.push_back(keyframes_[k]->frame);
     result.keyframe_stamps.push_back(keyframes_[k]->stamp);
     result.keyframe_poses.push_back(nodes[k].world_from_camera);  // unchanged unless the graph was solved
+  }
+  if (result.pose_graph.ok && options_.bundle_adjustment.enabled) {
+    const auto start = SteadyClock::now();
+    GlobalBundleAdjustmentResult refined =
+        RefineKeyframes(keyframes_, result.keyframe_poses, result.candidates, camera_, options_.bundle_adjustment,
+                        static_cast<size_t>(options_.max_points_per_loop));
+    result.bundle_adjustment = refined.report;
+    result.keyframe_poses = std::move(refined.world_from_camera);
+    result.bundle_adjustment_ms = MillisecondsSince(start);
   }
   if (options_.build_map) result.map = BuildStaticMap(*map_samples_, result.keyframe_poses, options_.map);
   for (const FrameEntry& f : frames_) {

@@ -12,6 +12,7 @@
 
 #include "core/pose.h"
 #include "features/frame_features.h"
+#include "mapping/keyframe.h"
 
 namespace dynvo {
 
@@ -27,6 +28,8 @@ struct LoopKeyframe {
   std::vector<Eigen::Vector2d> pixels;
   std::vector<Eigen::Vector3d> points_in_camera;
   cv::Mat descriptors;
+  // Tracking's observations of map points in this keyframe (the matched ones and those it made).
+  std::vector<KeyframeObservation> observations;
   cv::Mat depth;             // CV_32FC1 metres (0 = none), the frame's depth reduced by depth_scale
   double depth_scale = 1.0;  // depth pixel = full-size pixel * depth_scale
 };

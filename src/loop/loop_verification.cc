@@ -119,8 +119,11 @@ LoopVerification VerifyLoop(const LoopKeyframe& query, const LoopKeyframe& candi
   result.pose_found = true;
   result.query_from_candidate = estimate.camera_from_world;
   std::vector<Eigen::Vector2d> inlier_pixels;
-  for (size_t i = 0; i < pixels.size(); ++i)
-    if (estimate.inliers[i]) inlier_pixels.push_back(pixels[i]);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    if (!estimate.inliers[i]) continue;
+    inlier_pixels.push_back(pixels[i]);
+    result.inlier_matches.push_back(matches[i]);
+  }
   result.cells = OccupiedCells(inlier_pixels, camera);
   result.depth_agreement = DepthAgreement(query, candidate, result.query_from_candidate, camera);
   const Pose tracked_query_from_candidate = query.world_from_camera.inverse() * candidate.world_from_camera;

@@ -6,6 +6,8 @@
 // puts it, and a correction that the tracker's drift can explain.
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/pose.h"
@@ -44,6 +46,8 @@ struct LoopVerification {
   double correction_deg = 0.0;                   // its rotation angle
   bool pose_found = false;                       // EPnP + RANSAC found the pose (the checks ran)
   Pose query_from_candidate = Pose::Identity();  // the measured relative pose (when pose_found)
+  // The pose's inliers (when pose_found): (query feature, candidate feature), rows of their LoopKeyframes.
+  std::vector<std::pair<int, int>> inlier_matches;
 };
 
 // Verifies that `query` sees the place `candidate` saw. Deterministic. Throws InputError when

@@ -37,6 +37,21 @@ std::string LoopsCsv(const LoopClosingResult& result) {
   return csv.str();
 }
 
+// The full BA after the pose graph: what it solved, or why it did not run.
+nlohmann::json BundleAdjustmentJson(const LoopClosingResult& result) {
+  const BundleAdjustmentReport& ba = result.bundle_adjustment;
+  if (!ba.ok) return {{"solved", false}, {"why_not", result.pose_graph.ok ? ba.failure : "no pose graph"}};
+  return {{"solved", true},
+          {"keyframes", ba.num_keyframes_optimised + ba.num_keyframes_fixed},
+          {"points", ba.num_points},
+          {"observations", ba.num_observations},
+          {"outliers", ba.num_outliers_removed},
+          {"iterations", ba.iterations},
+          {"initial_rms_px", ba.initial_rms_px},
+          {"final_inlier_rms_px", ba.final_inlier_rms_px},
+          {"ms", result.bundle_adjustment_ms}};
+}
+
 }  // namespace
 
 void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& result, bool with_map) {
@@ -68,7 +83,8 @@ nlohmann::json LoopsJson(const LoopClosingResult& result, bool with_map) {
                           {"candidates", result.candidates.size()},
                           {"verified", verified},
                           {"accepted", result.loops},
-                          {"pose_graph", graph}};
+                          {"pose_graph", graph},
+                          {"bundle_adjustment", BundleAdjustmentJson(result)}};
   if (with_map) loops["map_points"] = result.map.points.size();
   return loops;
 }

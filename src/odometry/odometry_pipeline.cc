@@ -53,10 +53,11 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
   return refinements;
 }
 
-// What the loop closer takes of a frame: for a keyframe, its static features and images, and
-// with the map the pixels it must leave out (the dynamic mask and every person found, moving or
-// still).
-LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool keyframe, bool with_map) {
+// What the loop closer takes of a frame: for a keyframe, its static features and images,
+// tracking's observations of map points (the newest keyframe of `map`), and with the map the
+// pixels it must leave out (the dynamic mask and every person found, moving or still).
+LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, const LocalMap& map, bool keyframe,
+                        bool with_map) {
   LoopFrame loop;
   loop.frame = frame.index;
   loop.stamp = frame.stamp;
@@ -66,6 +67,8 @@ LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, bool key
   loop.static_features = &out.features.split.kept;
   loop.bgr = frame.bgr;
   loop.depth = frame.depth;
+  if (!map.keyframes().empty() && map.keyframes().back().frame_index == static_cast<int64_t>(frame.index))
+    loop.observations = &map.keyframes().back().observations;
   if (!with_map) return loop;
   loop.excluded = out.mask.mask.empty() ? cv::Mat::zeros(frame.depth.size(), CV_8UC1) : out.mask.mask.clone();
   for (const Detection& person : out.mask.people) loop.excluded |= PersonMaskFromBox(frame.depth, person.box);
@@ -114,7 +117,8 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   if (out.mapping.status == MappingStatus::kAdjusted) AdoptRefinedMap(frame.index, out);
   // 5. slam mode: keyframes from a tracked pose go to place recognition, beside tracking.
   if (loop_closer_)
-    loop_closer_->Observe(MakeLoopFrame(frame, out, tracked_keyframe, loop_closer_->options().build_map));
+    loop_closer_->Observe(
+        MakeLoopFrame(frame, out, tracker_.map(), tracked_keyframe, loop_closer_->options().build_map));
   // 6. What the refinements carry into the next frame.
   const auto upkeep = SteadyClock::now();
   for (const std::unique_ptr<MaskRefinement>& refinement : refinements_)

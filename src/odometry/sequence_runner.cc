@@ -306,6 +306,8 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   Executor executor(threads - 1);  // the calling thread is the other one
   LoopClosingOptions loop_closing;
   loop_closing.build_map = request.map;
+  loop_closing.bundle_adjustment = config.local_ba;  // its loss, depth weight and rounds
+  loop_closing.bundle_adjustment.enabled = true;     // whether or not tracking runs a local BA
   OdometryPipeline pipeline(dataset.camera(), config, dataset.image_area(), &executor,
                             request.slam ? &loop_closing : nullptr);
   if (pipeline.NeedsTruthMask() && !dataset.has_masks())

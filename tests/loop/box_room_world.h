@@ -3,6 +3,7 @@
 // 6 x 6 x 3 m box room, each with its own random ORB descriptor, seen from known poses with
 // exact depth (the room is convex: nothing occludes a wall point in view).
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "core/camera.h"
 #include "core/pose.h"
 #include "features/frame_features.h"
+#include "mapping/keyframe.h"
 
 namespace dynvo::test {
 
@@ -72,6 +74,34 @@ inline FrameFeatures SeeRoom(const BoxRoom& room, const Pose& world_from_camera,
     }
   }
   return features;
+}
+
+// Tracking's observations of the room from `world_from_camera`: the points SeeRoom sees, in
+// its order, each with its index in room.points as the map point id, pixel and depth exact.
+inline std::vector<KeyframeObservation> ObserveRoom(const BoxRoom& room, const Pose& world_from_camera) {
+  std::vector<KeyframeObservation> observations;
+  const Pose camera_from_world = world_from_camera.inverse();
+  for (size_t i = 0; i < room.points.size(); ++i) {
+    const Eigen::Vector3d p = camera_from_world * room.points[i];
+    if (p.z() < 0.3) continue;
+    const Eigen::Vector2d pixel = room.camera.Project(p);
+    if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= room.camera.width || pixel.y() >= room.camera.height) continue;
+    observations.push_back({static_cast<int64_t>(i), pixel, p.z()});
+  }
+  return observations;
+}
+
+// A camera on a ring 0.8 m out from the room's centre at 1.5 m height, looking outward, turned
+// `yaw_deg` degrees about the vertical (z) from the x axis.
+inline Pose RingPose(double yaw_deg) {
+  const double yaw = yaw_deg * 3.14159265358979323846 / 180.0;
+  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0.0);
+  Pose pose = Pose::Identity();
+  pose.linear().col(2) = forward;
+  pose.linear().col(0) = forward.cross(Eigen::Vector3d::UnitZ());
+  pose.linear().col(1) = forward.cross(pose.linear().col(0));
+  pose.translation() = Eigen::Vector3d(0.0, 0.0, 1.5) + 0.8 * forward;
+  return pose;
 }
 
 // The depth image (CV_32FC1, metres along the optical axis) of the room's faces.

@@ -15,17 +15,8 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr int kKeyframes = 48;  // 9 degrees apart: 1.2 turns
 constexpr int kFramesPerKeyframe = 10;
 
-// Keyframe k's true pose: 0.8 m out from the room's centre, looking outward, turned 9 k degrees.
-Pose TrueKeyframe(int k) {
-  const double yaw = 9.0 * k * kDeg;
-  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0.0);
-  Pose pose = Pose::Identity();
-  pose.linear().col(2) = forward;
-  pose.linear().col(0) = forward.cross(Eigen::Vector3d::UnitZ());
-  pose.linear().col(1) = forward.cross(pose.linear().col(0));
-  pose.translation() = Eigen::Vector3d(0.0, 0.0, 1.5) + 0.8 * forward;
-  return pose;
-}
+// Keyframe k's true pose: on the ring, turned 9 k degrees.
+Pose TrueKeyframe(int k) { return test::RingPose(9.0 * k); }
 
 // Tracking that turns 0.15 degrees too far and steps 2 mm aside at every keyframe: 7 degrees
 // and 8-10 cm of drift by the second turn.
@@ -40,15 +31,16 @@ class LoopCloserTest : public ::testing::Test {
       if (k > 0) tracked = tracked * TrueKeyframe(k - 1).inverse() * TrueKeyframe(k) * DriftStep();
       tracked_.push_back(tracked);
       features_.push_back(test::SeeRoom(*room_, TrueKeyframe(k), 12, 100 + k));
+      observations_.push_back(test::ObserveRoom(*room_, TrueKeyframe(k)));
       depths_.push_back(test::RoomDepth(*room_, TrueKeyframe(k)));
     }
   }
   static void TearDownTestSuite() { delete room_; }
 
   // Feeds the keyframes (and a frame after each, 0.1 m to the side of it) through a closer.
-  static LoopClosingResult Close(int workers) {
+  static LoopClosingResult Close(int workers, const LoopClosingOptions& options = {}) {
     Executor executor(workers);
-    LoopCloser closer(room_->camera, {}, &executor);
+    LoopCloser closer(room_->camera, options, &executor);
     for (int k = 0; k < kKeyframes; ++k) {
       const size_t frame = static_cast<size_t>(k * kFramesPerKeyframe);
       closer.Observe(Keyframe(k, frame, tracked_[k]));
@@ -60,7 +52,7 @@ class LoopCloserTest : public ::testing::Test {
     }
     return closer.Finish();
   }
-  // Keyframe k seen from its true pose, tracked at `tracked`.
+  // Keyframe k seen from its true pose, tracked at `tracked`, with tracking's observations.
   static LoopFrame Keyframe(int k, size_t frame, const Pose& tracked) {
     LoopFrame keyframe;
     keyframe.frame = frame;
@@ -69,6 +61,7 @@ class LoopCloserTest : public ::testing::Test {
     keyframe.keyframe = true;
     keyframe.static_features = &features_[k];
     keyframe.depth = depths_[k];
+    keyframe.observations = &observations_[k];
     return keyframe;
   }
   static Pose Beside() { return PoseFromAxisAngle(Eigen::Vector3d::Zero(), {0.1, 0.0, 0.0}); }
@@ -77,12 +70,14 @@ class LoopCloserTest : public ::testing::Test {
   static std::vector<Pose> tracked_;
   static std::vector<FrameFeatures> features_;
   static std::vector<cv::Mat> depths_;
+  static std::vector<std::vector<KeyframeObservation>> observations_;
 };
 
 test::BoxRoom* LoopCloserTest::room_ = nullptr;
 std::vector<Pose> LoopCloserTest::tracked_;
 std::vector<FrameFeatures> LoopCloserTest::features_;
 std::vector<cv::Mat> LoopCloserTest::depths_;
+std::vector<std::vector<KeyframeObservation>> LoopCloserTest::observations_;
 
 double PositionError(const Pose& estimate, int k) {
   return (estimate.translation() - TrueKeyframe(k).translation()).norm();
@@ -115,6 +110,24 @@ TEST_F(LoopCloserTest, TheRevisitClosesTheLoopAndEveryFrameFollows) {
   ASSERT_EQ(result.frame_poses.size(), static_cast<size_t>(2 * kKeyframes));
   for (int k = 0; k < kKeyframes; ++k)
     EXPECT_TRUE(result.frame_poses[2 * k + 1].isApprox(result.keyframe_poses[k] * Beside(), 1e-9)) << k;
+}
+
+TEST_F(LoopCloserTest, TheFullBaPutsTheKeyframesWhereTheirPointsSayBeyondThePoseGraph) {
+  LoopClosingOptions graph_only;
+  graph_only.bundle_adjustment.enabled = false;
+  const LoopClosingResult graph = Close(1, graph_only), full = Close(1);
+  ASSERT_TRUE(graph.pose_graph.ok && full.pose_graph.ok);
+  EXPECT_FALSE(graph.bundle_adjustment.ok);
+  ASSERT_TRUE(full.bundle_adjustment.ok) << full.bundle_adjustment.failure;
+  EXPECT_EQ(full.bundle_adjustment.num_keyframes_fixed, 1);
+  double graph_worst = 0.0, full_worst = 0.0;
+  for (int k = 0; k < kKeyframes; ++k) {
+    graph_worst = std::max(graph_worst, PositionError(graph.keyframe_poses[k], k));
+    full_worst = std::max(full_worst, PositionError(full.keyframe_poses[k], k));
+  }
+  // Tracking's drift is a bias the pose graph can only spread; exact points undo it.
+  EXPECT_GT(graph_worst, 0.005);
+  EXPECT_LT(full_worst, 0.001);
 }
 
 TEST_F(LoopCloserTest, ResultsDoNotDependOnTheThreads) {

@@ -55,6 +55,10 @@ TEST_F(LoopVerificationTest, ARevisitIsAcceptedWithItsTruePose) {
   EXPECT_LT(RotationAngle(Pose(truth.inverse() * v.query_from_candidate)), 0.5 * kDeg);
   EXPECT_GT(v.correction_m, 0.03);
   EXPECT_NEAR(v.correction_deg, 2.0, 0.5);
+  // Each inlier match is one room point seen from both.
+  ASSERT_EQ(v.inlier_matches.size(), static_cast<size_t>(v.inliers));
+  for (const auto& [q, c] : v.inlier_matches)
+    EXPECT_LT((truth * candidate.points_in_camera[c] - query.points_in_camera[q]).norm(), 1e-6) << q << " " << c;
 }
 
 TEST_F(LoopVerificationTest, ARepeatedTextureElsewhereIsRejectedByTheDrift) {
