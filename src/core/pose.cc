@@ -51,4 +51,10 @@ Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d&
   return pose;
 }
 
+Pose InterpolatePose(const Pose& a, const Pose& b, double fraction) {
+  const Pose step = a.inverse() * b;
+  const Eigen::AngleAxisd rotation(step.linear());
+  return a * PoseFromAxisAngle(fraction * rotation.angle() * rotation.axis(), fraction * step.translation());
+}
+
 }  // namespace dynvo

@@ -28,4 +28,8 @@ double RotationAngle(const Pose& pose);
 // Rodrigues exponential of an axis-angle vector (radians) and a translation.
 Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d& t);
 
+// The pose `fraction` of the way from `a` to `b`: a * step^fraction with step = a^-1 * b, its
+// rotation scaled along its axis and its translation linearly. a at 0, b at 1.
+Pose InterpolatePose(const Pose& a, const Pose& b, double fraction);
+
 }  // namespace dynvo

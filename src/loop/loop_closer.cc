@@ -1,5 +1,6 @@
 #include "loop/loop_closer.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "core/error.h"
@@ -102,15 +103,21 @@ LoopClosingResult LoopCloser::Finish() {
   if (options_.build_map) result.map = BuildStaticMap(*map_samples_, result.keyframe_poses, options_.map);
   for (const FrameEntry& f : frames_) {
     result.frame_stamps.push_back(f.stamp);
-    if (f.keyframe < 0) {
-      result.frame_poses.push_back(f.world_from_camera);
-      continue;
-    }
-    const LoopKeyframe& reference = *keyframes_[f.keyframe];
-    result.frame_poses.push_back(result.keyframe_poses[f.keyframe] * reference.world_from_camera.inverse() *
-                                 f.world_from_camera);
+    result.frame_poses.push_back(CorrectedPose(f, result.keyframe_poses));
   }
   return result;
+}
+
+Pose LoopCloser::CorrectedPose(const FrameEntry& frame, const std::vector<Pose>& keyframe_poses) const {
+  if (frame.keyframe < 0) return frame.world_from_camera;
+  const auto k = static_cast<size_t>(frame.keyframe);
+  const LoopKeyframe& reference = *keyframes_[k];
+  const Pose correction = keyframe_poses[k] * reference.world_from_camera.inverse();
+  if (k + 1 == keyframes_.size() || frame.stamp <= reference.stamp) return correction * frame.world_from_camera;
+  const LoopKeyframe& next = *keyframes_[k + 1];
+  const Pose next_correction = keyframe_poses[k + 1] * next.world_from_camera.inverse();
+  const double fraction = std::min(1.0, (frame.stamp - reference.stamp) / (next.stamp - reference.stamp));
+  return InterpolatePose(correction, next_correction, fraction) * frame.world_from_camera;
 }
 
 }  // namespace dynvo

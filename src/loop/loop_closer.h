@@ -1,7 +1,8 @@
 #pragma once
 // The loop closer (slam mode): keyframes go to place recognition on the executor, one after
 // the other, beside tracking, which never waits for it; at the end, the accepted loops close
-// the pose graph of the keyframes and every frame follows the keyframe it was tracked from.
+// the pose graph of the keyframes, a full BA refines them, and every frame follows the
+// keyframes it was tracked between.
 
 #include <cstddef>
 #include <memory>
@@ -96,6 +97,11 @@ class LoopCloser {
     Pose world_from_camera = Pose::Identity();
     int keyframe = -1;  // the keyframe it was tracked from (the last one by then), -1 = none yet
   };
+  // A frame's pose in the corrected trajectory: the correction its keyframe got (corrected pose
+  // times online pose^-1), blended toward the next keyframe's by the frame's share of the time
+  // between the two, applied to its online pose. After the last keyframe a frame follows it
+  // rigidly; before the first it keeps its online pose.
+  Pose CorrectedPose(const FrameEntry& frame, const std::vector<Pose>& keyframe_poses) const;
 
   Camera camera_;
   LoopClosingOptions options_;

@@ -31,6 +31,19 @@ TEST(Pose, RotationAngleOfAxisAngle) {
   EXPECT_NEAR(RotationAngle(Pose::Identity()), 0.0, 1e-12);
 }
 
+TEST(Pose, InterpolationGoesFromOneEndToTheOtherAlongTheStep) {
+  const Pose a = PoseFromAxisAngle({0.1, 0.2, -0.3}, {1.0, 2.0, 3.0});
+  const Pose step = PoseFromAxisAngle({0.0, 0.0, 0.4}, {0.2, -0.1, 0.0});  // 0.4 rad about z
+  const Pose b = a * step;
+  EXPECT_TRUE(InterpolatePose(a, b, 0.0).isApprox(a, 1e-12));
+  EXPECT_TRUE(InterpolatePose(a, b, 1.0).isApprox(b, 1e-12));
+  // A quarter of the way: a quarter of the step's angle about its axis, a quarter of its translation.
+  const Pose quarter = InterpolatePose(a, b, 0.25);
+  const Pose expected = a * PoseFromAxisAngle({0.0, 0.0, 0.1}, {0.05, -0.025, 0.0});
+  EXPECT_TRUE(quarter.isApprox(expected, 1e-12));
+  EXPECT_NEAR(RotationAngle(Pose(a.inverse() * quarter)), 0.1, 1e-12);
+}
+
 TEST(Error, FileMessageNamesFileAndLine) {
   EXPECT_EQ(FileMessage("a/rgb.txt", 7, "bad"), "a/rgb.txt:7: bad");
   EXPECT_EQ(FileMessage("a/rgb.txt", 0, "missing"), "a/rgb.txt: missing");

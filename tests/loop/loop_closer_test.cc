@@ -106,10 +106,18 @@ TEST_F(LoopCloserTest, TheRevisitClosesTheLoopAndEveryFrameFollows) {
     EXPECT_GT(PositionError(tracked_[k], k), 0.08) << k;
     EXPECT_LT(PositionError(result.keyframe_poses[k], k), 0.02) << k;
   }
-  // A pose for every frame observed; a frame keeps its offset from its keyframe.
+  // A pose for every frame observed. A keyframe is where the correction put it; the frame a
+  // tenth of the way to the next keyframe takes a tenth of the way from its keyframe's
+  // correction to the next one's, the last keyframe's frame its keyframe's alone.
   ASSERT_EQ(result.frame_poses.size(), static_cast<size_t>(2 * kKeyframes));
-  for (int k = 0; k < kKeyframes; ++k)
-    EXPECT_TRUE(result.frame_poses[2 * k + 1].isApprox(result.keyframe_poses[k] * Beside(), 1e-9)) << k;
+  std::vector<Pose> corrections;
+  for (int k = 0; k < kKeyframes; ++k) corrections.push_back(result.keyframe_poses[k] * tracked_[k].inverse());
+  for (int k = 0; k < kKeyframes; ++k) {
+    EXPECT_TRUE(result.frame_poses[2 * k].isApprox(result.keyframe_poses[k], 1e-9)) << k;
+    const Pose correction =
+        k + 1 < kKeyframes ? InterpolatePose(corrections[k], corrections[k + 1], 0.1) : corrections[k];
+    EXPECT_TRUE(result.frame_poses[2 * k + 1].isApprox(correction * tracked_[k] * Beside(), 1e-9)) << k;
+  }
 }
 
 TEST_F(LoopCloserTest, TheFullBaPutsTheKeyframesWhereTheirPointsSayBeyondThePoseGraph) {
