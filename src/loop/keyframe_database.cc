@@ -21,7 +21,7 @@ constexpr int kDescriptorBytes = 32;
 
 void RequireDescriptors(const cv::Mat& descriptors, const char* what) {
   if (!descriptors.empty() && (descriptors.type() != CV_8UC1 || descriptors.cols != kDescriptorBytes))
-    throw InputError(std::string(what) + ": descriptors must be N x 32 CV_8UC1 (ORB)");
+    throw InputError(std::string(what) + ": descriptors must be N x 32 CV_8UC1 (ORB or LBD)");
 }
 
 std::array<uint64_t, 4> ToWords(const unsigned char* row) {

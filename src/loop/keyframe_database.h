@@ -1,5 +1,5 @@
 #pragma once
-// Place recognition without a vocabulary: every keyframe's ORB descriptors in a locality-
+// Place recognition without a vocabulary: every keyframe's ORB (or LBD) descriptors in a locality-
 // sensitive hash index built online (bit sampling: each table keys a descriptor by a fixed
 // random choice of its bits), so that a new keyframe finds the earlier keyframes that share
 // its descriptors without a vocabulary trained beforehand.

@@ -1,6 +1,7 @@
 #include "loop/loop_closer.h"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
@@ -45,8 +46,11 @@ void LoopCloser::Observe(const LoopFrame& frame) {
         MakeLoopKeyframe(keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features,
                          frame.depth, options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get());
     if (frame.observations != nullptr) keyframe.observations = *frame.observations;
-    auto made = std::make_shared<const LoopKeyframe>(std::move(keyframe));
+    // Its lines are described by the search (on the executor), before it reads them.
+    auto made = std::make_shared<LoopKeyframe>(std::move(keyframe));
     keyframes_.push_back(made);
+    std::optional<FrameLines> lines;
+    if (frame.lines != nullptr) lines = *frame.lines;
     // Each search (and map sample) waits for the one before: the database sees the keyframes in
     // order, whatever thread runs them, so the loops found never depend on timing.
     auto previous = std::move(last_search_);
@@ -56,7 +60,12 @@ void LoopCloser::Observe(const LoopFrame& frame) {
     const bool sample = options_.build_map;
     last_search_ = std::make_shared<Task<void>>(executor_.Submit(
         [previous, recognition, candidates, samples, made, sample, bgr = frame.bgr, depth = frame.depth,
-         excluded = frame.excluded, camera = camera_, map_options = options_.map] {
+         excluded = frame.excluded, camera = camera_, map_options = options_.map, lines = std::move(lines),
+         gray = frame.gray]() mutable {
+          if (lines) {
+            DescribeLines(gray, &*lines);
+            made->line_descriptors = lines->descriptors;
+          }
           if (previous && previous->valid()) previous->Get();
           for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
           if (sample) samples->push_back(SampleKeyframe(bgr, depth, excluded, camera, map_options));

@@ -12,6 +12,7 @@
 #include "core/executor.h"
 #include "core/pose.h"
 #include "features/frame_features.h"
+#include "lines/line_extractor.h"
 #include "loop/loop_keyframe.h"
 #include "loop/place_recognition.h"
 #include "loop/pose_graph.h"
@@ -68,6 +69,10 @@ struct LoopFrame {
   cv::Mat depth;                                   // CV_32FC1 metres
   cv::Mat excluded;  // CV_8UC1, non-zero: never in the map (the dynamic mask, every person found)
   const std::vector<KeyframeObservation>* observations = nullptr;  // tracking's, of map points (optional)
+  // features.lines on: the frame's segments off the mask and its grey image (CV_8UC1), on which
+  // the search describes them (LBD) beside tracking; null: no lines.
+  const FrameLines* lines = nullptr;
+  cv::Mat gray;
 };
 
 class LoopCloser {

@@ -28,6 +28,9 @@ struct LoopKeyframe {
   std::vector<Eigen::Vector2d> pixels;
   std::vector<Eigen::Vector3d> points_in_camera;
   cv::Mat descriptors;
+  // LBD descriptors (N x 32 CV_8UC1) of its line segments off the mask when lines are on
+  // (features.lines), else empty: they vote in place recognition with the ORB ones.
+  cv::Mat line_descriptors;
   // Tracking's observations of map points in this keyframe (the matched ones and those it made).
   std::vector<KeyframeObservation> observations;
   cv::Mat depth;             // CV_32FC1 metres (0 = none), the frame's depth reduced by depth_scale

@@ -23,7 +23,7 @@ constexpr size_t kGroupReach = 2;  // keyframes apart that still count as the sa
 }  // namespace
 
 PlaceRecognition::PlaceRecognition(const Camera& camera, const PlaceRecognitionOptions& options)
-    : camera_(camera), options_(options), database_(options.database) {
+    : camera_(camera), options_(options), database_(options.database), line_database_(options.database) {
   options_.Check();
 }
 
@@ -32,7 +32,9 @@ std::vector<std::pair<size_t, int>> PlaceRecognition::Candidates(const LoopKeyfr
   while (before < keyframes_.size() &&
          keyframes_[before]->frame + static_cast<size_t>(options_.min_frames_apart) <= keyframe.frame)
     ++before;
-  const std::vector<int> votes = database_.Votes(keyframe.descriptors, before);
+  std::vector<int> votes = database_.Votes(keyframe.descriptors, before);
+  const std::vector<int> line_votes = line_database_.Votes(keyframe.line_descriptors, before);
+  for (size_t k = 0; k < votes.size(); ++k) votes[k] += line_votes[k];
   std::vector<std::pair<size_t, int>> ranked;
   for (size_t k = 0; k < votes.size(); ++k)
     if (votes[k] >= options_.min_votes) ranked.emplace_back(k, votes[k]);
@@ -70,6 +72,7 @@ std::vector<LoopCandidate> PlaceRecognition::Process(std::shared_ptr<const LoopK
   }
   last_groups_ = groups;
   database_.Add(keyframe->descriptors);
+  line_database_.Add(keyframe->line_descriptors);
   keyframes_.push_back(std::move(keyframe));
   return examined;
 }

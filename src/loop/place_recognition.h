@@ -1,5 +1,6 @@
 #pragma once
-// Loop detection over the keyframes in order: candidates by votes in the keyframe database,
+// Loop detection over the keyframes in order: candidates by votes in the keyframe databases
+// (the keyframes' ORB descriptors, and their lines' LBD descriptors when lines are on),
 // kept when consecutive keyframes agree on them (temporal consistency), then verified
 // geometrically (loop/loop_verification.h). Plain state, no threads: the loop closer runs it
 // on the executor, one keyframe after the other.
@@ -22,7 +23,7 @@ struct PlaceRecognitionOptions {
   // Keyframes of the last 150 frames (5 s at 30 Hz) are never candidates: tracking's local map
   // still holds them, and a revisit of them closes no loop (>= 1).
   int min_frames_apart = 150;
-  int min_votes = 20;      // database votes a candidate needs (>= 1)
+  int min_votes = 20;      // database votes a candidate needs, ORB and LBD together (>= 1)
   int max_candidates = 3;  // best-voted candidates examined per keyframe (>= 1)
   // Consecutive keyframes that must find candidates within 2 keyframes of each other before
   // one is verified; a single lucky keyframe is not enough (>= 1).
@@ -61,7 +62,8 @@ class PlaceRecognition {
 
   Camera camera_;
   PlaceRecognitionOptions options_;
-  KeyframeDatabase database_;
+  KeyframeDatabase database_;       // the keyframes' ORB descriptors
+  KeyframeDatabase line_database_;  // their LBD descriptors (none when lines are off)
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
   std::vector<std::pair<size_t, int>> last_groups_;  // the previous keyframe's candidates: number, consistent
 };

@@ -53,8 +53,8 @@ std::vector<std::unique_ptr<MaskRefinement>> MakeRefinements(const Camera& camer
   return refinements;
 }
 
-// What the loop closer takes of a frame: for a keyframe, its static features and images,
-// tracking's observations of map points (the newest keyframe of `map`), and with the map the
+// What the loop closer takes of a frame: for a keyframe, its static features (and lines) and
+// images, tracking's observations of map points (the newest keyframe of `map`), and with the map the
 // pixels it must leave out (the dynamic mask and every person found, moving or still).
 LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, const LocalMap& map, bool keyframe,
                         bool with_map) {
@@ -67,6 +67,10 @@ LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, const Lo
   loop.static_features = &out.features.split.kept;
   loop.bgr = frame.bgr;
   loop.depth = frame.depth;
+  if (out.features.lines) {
+    loop.lines = &*out.features.lines;
+    loop.gray = frame.gray;
+  }
   if (!map.keyframes().empty() && map.keyframes().back().frame_index == static_cast<int64_t>(frame.index))
     loop.observations = &map.keyframes().back().observations;
   if (!with_map) return loop;

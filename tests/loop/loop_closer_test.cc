@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
+#include "lines/line_extractor.h"
 #include "loop/box_room_world.h"
 
 namespace dynvo {
@@ -185,6 +188,98 @@ TEST(PlaceRecognition, ALoneRevisitWaitsForConsistencyAndRecentKeyframesAreNoCan
   EXPECT_EQ(second[0].consistent, 2);
   EXPECT_TRUE(second[0].accepted()) << second[0].reason;
   EXPECT_LE(second[0].candidate, 1u);
+}
+
+
+// N x 32 random descriptors (CV_8UC1).
+cv::Mat RandomDescriptors(int rows, uint32_t seed) {
+  cv::Mat d(rows, 32, CV_8UC1);
+  cv::RNG(seed).fill(d, cv::RNG::UNIFORM, 0, 256);
+  return d;
+}
+
+TEST(PlaceRecognition, LineDescriptorsVoteWithThePointOnes) {
+  PlaceRecognitionOptions options;
+  options.min_votes = 20;
+  const cv::Mat points = RandomDescriptors(12, 1), lines = RandomDescriptors(12, 2);
+  const auto keyframe = [](size_t number, size_t frame, const cv::Mat& descriptors, const cv::Mat& line_descriptors) {
+    LoopKeyframe k;
+    k.number = number;
+    k.frame = frame;
+    k.descriptors = descriptors;
+    k.line_descriptors = line_descriptors;
+    return std::make_shared<const LoopKeyframe>(k);
+  };
+  const Camera camera;
+  // 12 shared points alone, or 12 shared lines alone, are too few; together they are a candidate.
+  for (const bool with_points : {false, true})
+    for (const bool with_lines : {false, true}) {
+      PlaceRecognition recognition(camera, options);
+      recognition.Process(keyframe(0, 0, points, lines));
+      const std::vector<LoopCandidate> found =
+          recognition.Process(keyframe(1, 300, with_points ? points : RandomDescriptors(12, 3),
+                                       with_lines ? lines : cv::Mat()));
+      if (with_points && with_lines) {
+        ASSERT_EQ(found.size(), 1u);
+        EXPECT_EQ(found[0].votes, 24);
+        EXPECT_EQ(found[0].candidate, 0u);
+      } else {
+        EXPECT_TRUE(found.empty()) << with_points << " " << with_lines;
+      }
+    }
+}
+
+// A grey image whose only lines are the sides of a 4 x 3 grid of shaded rectangles (48 sides).
+cv::Mat GridOfRectangles() {
+  cv::Mat shading(480, 640, CV_32FC1);
+  cv::RNG(7).fill(shading, cv::RNG::UNIFORM, -60.0, 60.0);
+  cv::GaussianBlur(shading, shading, cv::Size(0, 0), 5.0);
+  cv::Mat image(480, 640, CV_32FC1, cv::Scalar(40));
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 4; ++col)
+      cv::rectangle(image, cv::Rect(30 + 150 * col, 30 + 150 * row, 110, 110), cv::Scalar(120 + 30 * ((row + col) % 4)),
+                    cv::FILLED);
+  image += shading;
+  cv::Mat gray;
+  image.convertTo(gray, CV_8UC1);
+  return gray;
+}
+
+TEST(LoopCloser, AKeyframesLinesAreDescribedBesideTrackingAndVote) {
+  // Two keyframes 300 frames apart whose points share nothing (two rooms) but whose images
+  // show the same lines: with the lines the earlier one is a candidate, without them it is not.
+  const test::BoxRoom first_room = test::MakeBoxRoom(3000, 21), second_room = test::MakeBoxRoom(3000, 22);
+  const FrameFeatures seen_first = test::SeeRoom(first_room, test::RingPose(0.0), 0, 1);
+  const FrameFeatures seen_second = test::SeeRoom(second_room, test::RingPose(0.0), 0, 2);
+  const cv::Mat depth = test::RoomDepth(first_room, test::RingPose(0.0));
+  const cv::Mat gray = GridOfRectangles();
+  const FrameLines lines = DetectLines(gray, cv::Mat(), first_room.camera, LineExtractorOptions{});
+  ASSERT_GE(lines.size(), 30u);
+  for (const bool with_lines : {false, true}) {
+    Executor executor(1);
+    LoopClosingOptions options;
+    LoopCloser closer(first_room.camera, options, &executor);
+    for (const auto& [frame, features] : {std::pair{size_t{0}, &seen_first}, std::pair{size_t{300}, &seen_second}}) {
+      LoopFrame keyframe;
+      keyframe.frame = frame;
+      keyframe.keyframe = true;
+      keyframe.static_features = features;
+      keyframe.depth = depth;
+      if (with_lines) {
+        keyframe.lines = &lines;
+        keyframe.gray = gray;
+      }
+      closer.Observe(keyframe);
+    }
+    const LoopClosingResult result = closer.Finish();
+    if (with_lines) {
+      ASSERT_EQ(result.candidates.size(), 1u);
+      EXPECT_EQ(result.candidates[0].candidate_frame, 0u);
+      EXPECT_GE(result.candidates[0].votes, options.recognition.min_votes);
+    } else {
+      EXPECT_TRUE(result.candidates.empty());
+    }
+  }
 }
 
 }  // namespace
