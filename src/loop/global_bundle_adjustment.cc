@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include "core/error.h"
+
 namespace dynvo {
 
 namespace {
@@ -38,10 +40,10 @@ KeyframeObservation FeatureObservation(const LoopKeyframe& keyframe, int i, int6
   return {id, keyframe.pixels[static_cast<size_t>(i)], keyframe.points_in_camera[static_cast<size_t>(i)].z()};
 }
 
-// Fixes the first keyframe of each set of keyframes that points link (a map reseeded after a
-// tracking loss starts a new set, unless a loop links it back): the errors only see poses
-// relative to each other within a set, so each set keeps the place the pose graph gave it.
-void FixOneKeyframePerLinkedSet(LocalBaProblem* problem) {
+// Fixes the first `per_set` keyframes of each set of keyframes that points link (a map reseeded
+// after a tracking loss starts a new set, unless a loop links it back): the errors only see
+// poses relative to each other within a set, so each set keeps the place the pose graph gave it.
+void FixKeyframesPerLinkedSet(int per_set, LocalBaProblem* problem) {
   std::vector<size_t> root(problem->keyframes.size());
   for (size_t k = 0; k < root.size(); ++k) root[k] = k;
   const auto find = [&root](size_t k) {
@@ -55,7 +57,9 @@ void FixOneKeyframePerLinkedSet(LocalBaProblem* problem) {
     const size_t a = find(first), b = find(o.keyframe);
     root[std::max(a, b)] = std::min(a, b);  // the set's root is its first keyframe
   }
-  for (size_t k = 0; k < root.size(); ++k) problem->keyframes[k].fixed = find(k) == k;
+  std::vector<int> fixed_in_set(root.size(), 0);
+  for (size_t k = 0; k < root.size(); ++k)  // in order: a set's first keyframes
+    problem->keyframes[k].fixed = fixed_in_set[find(k)]++ < per_set;
 }
 
 }  // namespace
@@ -63,7 +67,8 @@ void FixOneKeyframePerLinkedSet(LocalBaProblem* problem) {
 LocalBaProblem MakeGlobalBundleAdjustment(const std::vector<std::shared_ptr<const LoopKeyframe>>& keyframes,
                                           const std::vector<Pose>& world_from_camera,
                                           const std::vector<LoopCandidate>& candidates, const Camera& camera,
-                                          size_t max_points_per_loop) {
+                                          size_t max_points_per_loop, bool with_depth) {
+  if (max_points_per_loop == 0) throw InputError("MakeGlobalBundleAdjustment: max_points_per_loop must be >= 1");
   LocalBaProblem problem;
   for (size_t k = 0; k < keyframes.size(); ++k)
     problem.keyframes.push_back({static_cast<int64_t>(k), world_from_camera[k].inverse(), false});
@@ -86,7 +91,7 @@ LocalBaProblem MakeGlobalBundleAdjustment(const std::vector<std::shared_ptr<cons
       AddTrack(loop_point_id--, track, world_from_camera, camera, &problem);
     }
   }
-  FixOneKeyframePerLinkedSet(&problem);
+  FixKeyframesPerLinkedSet(with_depth ? 1 : 2, &problem);
   if (keyframes.size() < 2)
     problem.failure = "needs at least 2 keyframes";
   else if (problem.observations.empty())
@@ -100,7 +105,8 @@ GlobalBundleAdjustmentResult RefineKeyframes(const std::vector<std::shared_ptr<c
                                              const BundleAdjustmentOptions& options, size_t max_points_per_loop) {
   GlobalBundleAdjustmentResult result;
   result.world_from_camera = world_from_camera;
-  const LocalBaProblem problem = MakeGlobalBundleAdjustment(keyframes, world_from_camera, candidates, camera, max_points_per_loop);
+  const LocalBaProblem problem = MakeGlobalBundleAdjustment(keyframes, world_from_camera, candidates, camera, max_points_per_loop,
+                                                            options.virtual_baseline_m > 0.0);
   const LocalBaSolution solution = SolveLocalBundleAdjustment(problem, camera, options);
   result.report = solution.report;
   if (!result.report.ok) return result;

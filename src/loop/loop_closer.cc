@@ -42,6 +42,9 @@ void LoopCloser::Observe(const LoopFrame& frame) {
   if (frame.keyframe) {
     if (frame.static_features == nullptr)
       throw InputError("LoopCloser::Observe: keyframe " + std::to_string(frame.frame) + " without its features");
+    if (frame.lines != nullptr && (frame.gray.type() != CV_8UC1 || frame.gray.size() != frame.lines->image_size))
+      throw InputError("LoopCloser::Observe: keyframe " + std::to_string(frame.frame) +
+                       " has lines but no CV_8UC1 grey image of their size");
     LoopKeyframe keyframe =
         MakeLoopKeyframe(keyframes_.size(), frame.frame, frame.stamp, frame.world_from_camera, *frame.static_features,
                          frame.depth, options_.depth_reduction, keyframes_.empty() ? nullptr : keyframes_.back().get());
@@ -122,7 +125,8 @@ Pose LoopCloser::CorrectedPose(const FrameEntry& frame, const std::vector<Pose>&
   const auto k = static_cast<size_t>(frame.keyframe);
   const LoopKeyframe& reference = *keyframes_[k];
   const Pose correction = keyframe_poses[k] * reference.world_from_camera.inverse();
-  if (k + 1 == keyframes_.size() || frame.stamp <= reference.stamp) return correction * frame.world_from_camera;
+  if (k + 1 == keyframes_.size() || frame.stamp <= reference.stamp || keyframes_[k + 1]->stamp <= reference.stamp)
+    return correction * frame.world_from_camera;
   const LoopKeyframe& next = *keyframes_[k + 1];
   const Pose next_correction = keyframe_poses[k + 1] * next.world_from_camera.inverse();
   const double fraction = std::min(1.0, (frame.stamp - reference.stamp) / (next.stamp - reference.stamp));

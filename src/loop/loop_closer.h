@@ -87,7 +87,8 @@ class LoopCloser {
 
   // Records a frame's online pose. A keyframe also keeps its static features with depth and its
   // reduced depth image, and its search for loops (and with build_map its map sample) starts on
-  // the executor. Throws InputError when a keyframe comes without its features.
+  // the executor. Throws InputError when a keyframe comes without its features, or with lines
+  // but without their grey image.
   void Observe(const LoopFrame& frame);
 
   const LoopClosingOptions& options() const { return options_; }

@@ -40,7 +40,9 @@ std::string LoopsCsv(const LoopClosingResult& result) {
 // The full BA after the pose graph: what it solved, or why it did not run.
 nlohmann::json BundleAdjustmentJson(const LoopClosingResult& result) {
   const BundleAdjustmentReport& ba = result.bundle_adjustment;
-  if (!ba.ok) return {{"solved", false}, {"why_not", result.pose_graph.ok ? ba.failure : "no pose graph"}};
+  if (!ba.ok)
+    return {{"solved", false},
+            {"why_not", !result.pose_graph.ok ? "no pose graph" : ba.failure.empty() ? "disabled" : ba.failure}};
   return {{"solved", true},
           {"keyframes", ba.num_keyframes_optimised + ba.num_keyframes_fixed},
           {"points", ba.num_points},

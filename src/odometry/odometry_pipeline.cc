@@ -71,8 +71,7 @@ LoopFrame MakeLoopFrame(const RgbdFrame& frame, const FrameOutput& out, const Lo
     loop.lines = &*out.features.lines;
     loop.gray = frame.gray;
   }
-  if (!map.keyframes().empty() && map.keyframes().back().frame_index == static_cast<int64_t>(frame.index))
-    loop.observations = &map.keyframes().back().observations;
+  if (!map.keyframes().empty()) loop.observations = &map.keyframes().back().observations;  // this frame's
   if (!with_map) return loop;
   loop.excluded = out.mask.mask.empty() ? cv::Mat::zeros(frame.depth.size(), CV_8UC1) : out.mask.mask.clone();
   for (const Detection& person : out.mask.people) loop.excluded |= PersonMaskFromBox(frame.depth, person.box);

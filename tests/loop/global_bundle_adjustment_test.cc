@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "loop/box_room_world.h"
 
 namespace dynvo {
@@ -101,10 +102,10 @@ TEST_F(GlobalBundleAdjustmentTest, ALoopGivesAtMostItsShareOfPointsSpreadOverIts
   const LoopCandidate loop = Loop(1, 0);
   const size_t matches = loop.verification.inlier_matches.size();
   ASSERT_GT(matches, 100u);
-  const LocalBaProblem all = MakeGlobalBundleAdjustment(keyframes, poses, {loop}, room_.camera, matches);
+  const LocalBaProblem all = MakeGlobalBundleAdjustment(keyframes, poses, {loop}, room_.camera, matches, true);
   EXPECT_EQ(all.points.size(), matches);
   EXPECT_EQ(all.observations.size(), 2 * matches);
-  const LocalBaProblem capped = MakeGlobalBundleAdjustment(keyframes, poses, {loop}, room_.camera, 10);
+  const LocalBaProblem capped = MakeGlobalBundleAdjustment(keyframes, poses, {loop}, room_.camera, 10, true);
   ASSERT_EQ(capped.points.size(), 10u);
   // Spread: the first and the last tenth of the matches both give a point.
   const Eigen::Vector2d first = keyframes[1]->pixels[loop.verification.inlier_matches.front().first];
@@ -114,6 +115,23 @@ TEST_F(GlobalBundleAdjustmentTest, ALoopGivesAtMostItsShareOfPointsSpreadOverIts
   EXPECT_TRUE(capped.observations[last].measured.pixel.isApprox(
       keyframes[1]->pixels[loop.verification.inlier_matches[last_match].first]));
   EXPECT_GE(last_match, matches * 8 / 10);
+}
+
+TEST_F(GlobalBundleAdjustmentTest, WithoutTheDepthTermTwoKeyframesFixTheScale) {
+  std::vector<std::shared_ptr<const LoopKeyframe>> keyframes;
+  std::vector<Pose> poses;
+  for (int k = 0; k < 8; ++k) {
+    keyframes.push_back(Keyframe(k, true));
+    poses.push_back(k < 2 ? TrueKeyframe(k) : Drifted(k));
+  }
+  BundleAdjustmentOptions reprojection_only;
+  reprojection_only.virtual_baseline_m = 0.0;
+  const GlobalBundleAdjustmentResult result =
+      RefineKeyframes(keyframes, poses, {}, room_.camera, reprojection_only, 1000);
+  ASSERT_TRUE(result.report.ok) << result.report.failure;
+  EXPECT_EQ(result.report.num_keyframes_fixed, 2);
+  for (int k = 0; k < 8; ++k) EXPECT_LT(PositionError(result.world_from_camera[k], TrueKeyframe(k)), 1e-4) << k;
+  EXPECT_THROW(MakeGlobalBundleAdjustment(keyframes, poses, {}, room_.camera, 0, true), InputError);
 }
 
 TEST_F(GlobalBundleAdjustmentTest, ARestartedMapKeepsThePlaceThePoseGraphGaveIt) {
