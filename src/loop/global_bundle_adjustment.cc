@@ -105,8 +105,8 @@ GlobalBundleAdjustmentResult RefineKeyframes(const std::vector<std::shared_ptr<c
                                              const BundleAdjustmentOptions& options, size_t max_points_per_loop) {
   GlobalBundleAdjustmentResult result;
   result.world_from_camera = world_from_camera;
-  const LocalBaProblem problem = MakeGlobalBundleAdjustment(keyframes, world_from_camera, candidates, camera, max_points_per_loop,
-                                                            options.virtual_baseline_m > 0.0);
+  const LocalBaProblem problem = MakeGlobalBundleAdjustment(keyframes, world_from_camera, candidates, camera,
+                                                            max_points_per_loop, options.virtual_baseline_m > 0.0);
   const LocalBaSolution solution = SolveLocalBundleAdjustment(problem, camera, options);
   result.report = solution.report;
   if (!result.report.ok) return result;

@@ -61,10 +61,10 @@ void LoopCloser::Observe(const LoopFrame& frame) {
     auto candidates = candidates_;
     auto samples = map_samples_;
     const bool sample = options_.build_map;
-    last_search_ = std::make_shared<Task<void>>(executor_.Submit(
-        [previous, recognition, candidates, samples, made, sample, bgr = frame.bgr, depth = frame.depth,
-         excluded = frame.excluded, camera = camera_, map_options = options_.map, lines = std::move(lines),
-         gray = frame.gray]() mutable {
+    last_search_ = std::make_shared<Task<void>>(
+        executor_.Submit([previous, recognition, candidates, samples, made, sample, bgr = frame.bgr,
+                          depth = frame.depth, excluded = frame.excluded, camera = camera_, map_options = options_.map,
+                          lines = std::move(lines), gray = frame.gray]() mutable {
           if (lines) {
             DescribeLines(gray, &*lines);
             made->line_descriptors = lines->descriptors;

@@ -42,9 +42,9 @@ struct LoopClosingOptions {
 };
 
 struct LoopClosingResult {
-  std::vector<LoopCandidate> candidates;  // every candidate examined, in keyframe order
-  int loops = 0;                          // accepted, each a pose graph edge
-  PoseGraphReport pose_graph;             // ok = false when there was no loop to close
+  std::vector<LoopCandidate> candidates;     // every candidate examined, in keyframe order
+  int loops = 0;                             // accepted, each a pose graph edge
+  PoseGraphReport pose_graph;                // ok = false when there was no loop to close
   BundleAdjustmentReport bundle_adjustment;  // the full BA after the pose graph (ok = false: not run or failed)
   double bundle_adjustment_ms = 0.0;         // its wall time
   // Keyframes: input frame, stamp, corrected pose.

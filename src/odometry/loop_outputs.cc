@@ -42,7 +42,9 @@ nlohmann::json BundleAdjustmentJson(const LoopClosingResult& result) {
   const BundleAdjustmentReport& ba = result.bundle_adjustment;
   if (!ba.ok)
     return {{"solved", false},
-            {"why_not", !result.pose_graph.ok ? "no pose graph" : ba.failure.empty() ? "disabled" : ba.failure}};
+            {"why_not", !result.pose_graph.ok ? "no pose graph"
+                        : ba.failure.empty()  ? "disabled"
+                                              : ba.failure}};
   return {{"solved", true},
           {"keyframes", ba.num_keyframes_optimised + ba.num_keyframes_fixed},
           {"points", ba.num_points},

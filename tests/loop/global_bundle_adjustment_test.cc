@@ -85,7 +85,7 @@ TEST_F(GlobalBundleAdjustmentTest, TrackedPointsPullDriftedKeyframesToTheTruth) 
 TEST_F(GlobalBundleAdjustmentTest, ALoopsInlierMatchesAloneLinkItsKeyframes) {
   // Keyframes 0 and 2 share no tracked point, only a loop's matches; keyframe 1 shares nothing.
   const std::vector<std::shared_ptr<const LoopKeyframe>> keyframes = {Keyframe(0, false), Keyframe(1, false),
-                                                                       Keyframe(2, false)};
+                                                                      Keyframe(2, false)};
   const std::vector<Pose> poses = {TrueKeyframe(0), Drifted(1), Drifted(2)};
   const LoopCandidate loop = Loop(2, 0);
   ASSERT_GT(loop.verification.inlier_matches.size(), 50u);

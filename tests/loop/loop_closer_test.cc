@@ -190,7 +190,6 @@ TEST(PlaceRecognition, ALoneRevisitWaitsForConsistencyAndRecentKeyframesAreNoCan
   EXPECT_LE(second[0].candidate, 1u);
 }
 
-
 // N x 32 random descriptors (CV_8UC1).
 cv::Mat RandomDescriptors(int rows, uint32_t seed) {
   cv::Mat d(rows, 32, CV_8UC1);
@@ -216,9 +215,8 @@ TEST(PlaceRecognition, LineDescriptorsVoteWithThePointOnes) {
     for (const bool with_lines : {false, true}) {
       PlaceRecognition recognition(camera, options);
       recognition.Process(keyframe(0, 0, points, lines));
-      const std::vector<LoopCandidate> found =
-          recognition.Process(keyframe(1, 300, with_points ? points : RandomDescriptors(12, 3),
-                                       with_lines ? lines : cv::Mat()));
+      const std::vector<LoopCandidate> found = recognition.Process(
+          keyframe(1, 300, with_points ? points : RandomDescriptors(12, 3), with_lines ? lines : cv::Mat()));
       if (with_points && with_lines) {
         ASSERT_EQ(found.size(), 1u);
         EXPECT_EQ(found[0].votes, 24);
