@@ -25,6 +25,7 @@ LoopCloser::LoopCloser(const Camera& camera, const LoopClosingOptions& options, 
       executor_(*executor),
       recognition_(std::make_shared<PlaceRecognition>(camera, options.recognition)),
       candidates_(std::make_shared<std::vector<LoopCandidate>>()),
+      correction_(std::make_shared<LoopCorrection>(options.pose_graph)),
       map_samples_(std::make_shared<std::vector<KeyframeMapSample>>()) {
   options_.Check();
 }
@@ -59,10 +60,11 @@ void LoopCloser::Observe(const LoopFrame& frame) {
     auto previous = std::move(last_search_);
     auto recognition = recognition_;
     auto candidates = candidates_;
+    auto correction = correction_;
     auto samples = map_samples_;
     const bool sample = options_.build_map;
     last_search_ = std::make_shared<Task<void>>(
-        executor_.Submit([previous, recognition, candidates, samples, made, sample, bgr = frame.bgr,
+        executor_.Submit([previous, recognition, candidates, correction, samples, made, sample, bgr = frame.bgr,
                           depth = frame.depth, excluded = frame.excluded, camera = camera_, map_options = options_.map,
                           lines = std::move(lines), gray = frame.gray]() mutable {
           if (lines) {
@@ -70,7 +72,9 @@ void LoopCloser::Observe(const LoopFrame& frame) {
             made->line_descriptors = lines->descriptors;
           }
           if (previous && previous->valid()) previous->Get();
-          for (LoopCandidate& c : recognition->Process(made)) candidates->push_back(std::move(c));
+          std::vector<LoopCandidate> examined = recognition->Process(made);
+          correction->Add(made, examined);
+          for (LoopCandidate& c : examined) candidates->push_back(std::move(c));
           if (sample) samples->push_back(SampleKeyframe(bgr, depth, excluded, camera, map_options));
         }));
   }
@@ -81,27 +85,16 @@ LoopClosingResult LoopCloser::Finish() {
   if (last_search_ && last_search_->valid()) last_search_->Get();
   LoopClosingResult result;
   result.candidates = *candidates_;
-  std::vector<PoseGraphNode> nodes;
-  std::vector<PoseGraphEdge> edges;
-  for (size_t k = 0; k < keyframes_.size(); ++k) {
-    nodes.push_back({static_cast<int64_t>(k), keyframes_[k]->world_from_camera, k == 0});
-    if (k > 0)
-      edges.push_back({k - 1, k, keyframes_[k - 1]->world_from_camera.inverse() * keyframes_[k]->world_from_camera,
-                       PoseGraphEdgeKind::kOdometry});
-  }
-  for (const LoopCandidate& c : result.candidates) {
-    if (!c.accepted()) continue;
-    edges.push_back({c.candidate, c.keyframe, c.verification.query_from_candidate.inverse(), PoseGraphEdgeKind::kLoop});
-    ++result.loops;
-  }
-  if (result.loops > 0)
-    result.pose_graph = OptimizePoseGraph(options_.pose_graph, edges, &nodes);
-  else
-    result.pose_graph.failure = "no loop";
-  for (size_t k = 0; k < keyframes_.size(); ++k) {
-    result.keyframe_frames.push_back(keyframes_[k]->frame);
-    result.keyframe_stamps.push_back(keyframes_[k]->stamp);
-    result.keyframe_poses.push_back(nodes[k].world_from_camera);  // unchanged unless the graph was solved
+  const KeyframeCorrection correction = correction_->Latest();
+  for (const LoopCandidate& c : result.candidates) result.loops += c.accepted();
+  result.pose_graph = correction.report;
+  if (correction.solves == 0) result.pose_graph.failure = "no loop";
+  result.pose_graph_solves = correction.solves;
+  result.pose_graph_ms = correction.solve_ms;
+  result.keyframe_poses = CorrectedKeyframePoses(keyframes_, correction);
+  for (const auto& keyframe : keyframes_) {
+    result.keyframe_frames.push_back(keyframe->frame);
+    result.keyframe_stamps.push_back(keyframe->stamp);
   }
   if (result.pose_graph.ok && options_.bundle_adjustment.enabled) {
     const auto start = SteadyClock::now();

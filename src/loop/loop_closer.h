@@ -1,8 +1,9 @@
 #pragma once
 // The loop closer (slam mode): keyframes go to place recognition on the executor, one after
-// the other, beside tracking, which never waits for it; at the end, the accepted loops close
-// the pose graph of the keyframes, a full BA refines them, and every frame follows the
-// keyframes it was tracked between.
+// the other, beside tracking, which never waits for it; a keyframe whose search accepts a loop
+// closes the pose graph of the keyframes so far on the same task (loop/loop_correction.h). At
+// the end a full BA refines the corrected keyframes, and every frame follows the keyframes it
+// was tracked between.
 
 #include <cstddef>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "core/pose.h"
 #include "features/frame_features.h"
 #include "lines/line_extractor.h"
+#include "loop/loop_correction.h"
 #include "loop/loop_keyframe.h"
 #include "loop/place_recognition.h"
 #include "loop/pose_graph.h"
@@ -44,7 +46,9 @@ struct LoopClosingOptions {
 struct LoopClosingResult {
   std::vector<LoopCandidate> candidates;     // every candidate examined, in keyframe order
   int loops = 0;                             // accepted, each a pose graph edge
-  PoseGraphReport pose_graph;                // ok = false when there was no loop to close
+  PoseGraphReport pose_graph;                // the last solve; ok = false when there was no loop to close
+  int pose_graph_solves = 0;                 // one per keyframe that accepted a loop, in the background
+  double pose_graph_ms = 0.0;                // their wall time together
   BundleAdjustmentReport bundle_adjustment;  // the full BA after the pose graph (ok = false: not run or failed)
   double bundle_adjustment_ms = 0.0;         // its wall time
   // Keyframes: input frame, stamp, corrected pose.
@@ -93,8 +97,12 @@ class LoopCloser {
 
   const LoopClosingOptions& options() const { return options_; }
 
-  // Waits for the searches, closes the accepted loops and returns the corrected trajectory.
-  // Call once, after the last frame.
+  // The pose graph as the background last solved it, for a live consumer: a copy, without
+  // waiting (what it covers depends on how far the searches got).
+  KeyframeCorrection LatestCorrection() const { return correction_->Latest(); }
+
+  // Waits for the searches (and the pose graphs they solve), refines the corrected keyframes
+  // (full BA) and returns the corrected trajectory. Call once, after the last frame.
   LoopClosingResult Finish();
 
  private:
@@ -117,6 +125,7 @@ class LoopCloser {
   // Owned by the searches once started: each search waits for the one before.
   std::shared_ptr<PlaceRecognition> recognition_;
   std::shared_ptr<std::vector<LoopCandidate>> candidates_;
+  std::shared_ptr<LoopCorrection> correction_;
   std::shared_ptr<std::vector<KeyframeMapSample>> map_samples_;  // build_map: one per keyframe
   std::shared_ptr<Task<void>> last_search_;
 };

@@ -90,6 +90,11 @@ TEST_F(LoopCloserTest, TheRevisitClosesTheLoopAndEveryFrameFollows) {
   const LoopClosingResult result = Close(1);
   ASSERT_GT(result.loops, 0);
   ASSERT_TRUE(result.pose_graph.ok) << result.pose_graph.failure;
+  // The pose graph was solved in the background once per keyframe that accepted a loop.
+  std::vector<size_t> closing;
+  for (const LoopCandidate& c : result.candidates)
+    if (c.accepted() && (closing.empty() || closing.back() != c.keyframe)) closing.push_back(c.keyframe);
+  EXPECT_EQ(result.pose_graph_solves, static_cast<int>(closing.size()));
   // Every accepted loop joins a keyframe near the end of the turn to one of its start, with
   // their true relative pose.
   for (const LoopCandidate& c : result.candidates) {
