@@ -46,7 +46,7 @@ struct LoopClosingOptions {
 struct LoopClosingResult {
   std::vector<LoopCandidate> candidates;     // every candidate examined, in keyframe order
   int loops = 0;                             // accepted, each a pose graph edge
-  PoseGraphReport pose_graph;                // the last solve; ok = false when there was no loop to close
+  PoseGraphReport pose_graph;                // the last successful solve; ok = false: no loop closed
   int pose_graph_solves = 0;                 // one per keyframe that accepted a loop, in the background
   double pose_graph_ms = 0.0;                // their wall time together
   BundleAdjustmentReport bundle_adjustment;  // the full BA after the pose graph (ok = false: not run or failed)

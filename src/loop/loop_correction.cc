@@ -17,8 +17,11 @@ void LoopCorrection::Add(const std::shared_ptr<const LoopKeyframe>& keyframe,
   const auto start = SteadyClock::now();
   std::vector<PoseGraphNode> nodes;
   std::vector<PoseGraphEdge> edges;
+  // From the last solution: the keyframes it placed where it put them, the later ones moved by
+  // its drift; the new loops' error is all that is left to spread.
+  const std::vector<Pose> start_poses = CorrectedKeyframePoses(keyframes_, solution_);
   for (size_t k = 0; k < keyframes_.size(); ++k) {
-    nodes.push_back({static_cast<int64_t>(k), keyframes_[k]->world_from_camera, k == 0});
+    nodes.push_back({static_cast<int64_t>(k), start_poses[k], k == 0});
     if (k > 0)
       edges.push_back({k - 1, k, keyframes_[k - 1]->world_from_camera.inverse() * keyframes_[k]->world_from_camera,
                        PoseGraphEdgeKind::kOdometry});
@@ -40,6 +43,7 @@ void LoopCorrection::Add(const std::shared_ptr<const LoopKeyframe>& keyframe,
   latest_.keyframe_poses.clear();
   for (const PoseGraphNode& node : nodes) latest_.keyframe_poses.push_back(node.world_from_camera);
   latest_.drift = latest_.keyframe_poses.back() * keyframes_.back()->world_from_camera.inverse();
+  solution_ = latest_;
 }
 
 KeyframeCorrection LoopCorrection::Latest() const {

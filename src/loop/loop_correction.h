@@ -21,7 +21,7 @@ struct KeyframeCorrection {
   int solves = 0;          // pose graphs solved so far, one per keyframe that accepted a loop
   int failures = 0;        // solves that failed (each left the solution before it in place)
   double solve_ms = 0.0;   // wall time of all solves
-  PoseGraphReport report;  // the latest successful solve (ok = false: none yet, failure: why the last failed)
+  PoseGraphReport report;  // the latest successful solve (ok = false: none yet; failure: why the first failed)
   // world_from_camera of keyframes 0 .. size-1 (the keyframes seen when it was solved),
   // corrected.
   std::vector<Pose> keyframe_poses;
@@ -37,7 +37,7 @@ class LoopCorrection {
   // Called once per keyframe, in keyframe order, by one thread at a time (the search chain):
   // adds the keyframe with its tracking edge to the one before and the accepted loops among
   // `examined` (its search's candidates); when there was one, solves the graph of every
-  // keyframe added so far from their tracked poses and publishes the solution.
+  // keyframe added so far, starting from the last solution, and publishes the new one.
   void Add(const std::shared_ptr<const LoopKeyframe>& keyframe, const std::vector<LoopCandidate>& examined);
 
   // A copy of the latest solution; never waits for a solve in progress.
@@ -48,6 +48,7 @@ class LoopCorrection {
   // Touched only by Add.
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
   std::vector<PoseGraphEdge> loop_edges_;
+  KeyframeCorrection solution_;  // the last successful solve (latest_ without the lock)
   mutable std::mutex mutex_;
   KeyframeCorrection latest_;  // guarded by mutex_
 };
