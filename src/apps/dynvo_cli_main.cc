@@ -125,11 +125,14 @@ int main(int argc, char** argv) {
     }
     if (!request.quiet) {
       const auto& t = report["time"];
-      std::fprintf(stderr,
-                   "dynvo-cli: %zu frames, processing median %.2f ms/frame, %.1f frames/s end to end; outputs in %s\n",
-                   report["counts"]["frames"].get<size_t>(),
-                   t["processing_ms"].is_null() ? 0.0 : t["processing_ms"]["median"].get<double>(),
-                   t["end_to_end_fps"].get<double>(), request.out_dir.c_str());
+      const std::string loops = report.contains("loops")
+                                    ? ", " + std::to_string(report["loops"]["accepted"].get<int>()) + " loops closed"
+                                    : std::string();
+      std::fprintf(
+          stderr, "dynvo-cli: %zu frames, processing median %.2f ms/frame, %.1f frames/s end to end%s; outputs in %s\n",
+          report["counts"]["frames"].get<size_t>(),
+          t["processing_ms"].is_null() ? 0.0 : t["processing_ms"]["median"].get<double>(),
+          t["end_to_end_fps"].get<double>(), loops.c_str(), request.out_dir.c_str());
     }
     return 0;
   } catch (const dynvo::InputError& e) {

@@ -100,6 +100,7 @@ class LoopCloser {
   // The pose graph as the background last solved it, for a live consumer: a copy, without
   // waiting (what it covers depends on how far the searches got).
   KeyframeCorrection LatestCorrection() const { return correction_->Latest(); }
+  int LoopsClosed() const { return correction_->LoopsClosed(); }
 
   // Waits for the searches (and the pose graphs they solve), refines the corrected keyframes
   // (full BA) and returns the corrected trajectory. Call once, after the last frame.

@@ -51,6 +51,11 @@ KeyframeCorrection LoopCorrection::Latest() const {
   return latest_;
 }
 
+int LoopCorrection::LoopsClosed() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return latest_.loops;
+}
+
 std::vector<Pose> CorrectedKeyframePoses(const std::vector<std::shared_ptr<const LoopKeyframe>>& keyframes,
                                          const KeyframeCorrection& correction) {
   std::vector<Pose> poses;

@@ -42,6 +42,8 @@ class LoopCorrection {
 
   // A copy of the latest solution; never waits for a solve in progress.
   KeyframeCorrection Latest() const;
+  // The loops the latest solution closed (its `loops`), without copying it.
+  int LoopsClosed() const;
 
  private:
   PoseGraphOptions options_;

@@ -132,6 +132,11 @@ ProcessedFrame OdometryPipeline::Process(const RgbdFrame& frame, const RgbdFrame
   return processed;
 }
 
+std::optional<int> OdometryPipeline::LoopsClosed() const {
+  if (!loop_closer_) return std::nullopt;
+  return loop_closer_->LoopsClosed();
+}
+
 std::optional<LoopClosingResult> OdometryPipeline::FinishLoops() {
   if (!loop_closer_) return std::nullopt;
   return loop_closer_->Finish();

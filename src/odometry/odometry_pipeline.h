@@ -58,6 +58,8 @@ class OdometryPipeline {
   // corrected trajectory of the frames processed. Call once, after the last frame. Nothing
   // (nullopt) in odometry mode.
   std::optional<LoopClosingResult> FinishLoops();
+  // Slam mode: the loops the background has closed so far, without waiting (nullopt in vo mode).
+  std::optional<int> LoopsClosed() const;
   // What the pipeline left out of the config and why (e.g. a detector model not found), once.
   const std::vector<std::string>& notices() const { return notices_; }
 

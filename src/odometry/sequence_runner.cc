@@ -337,6 +337,11 @@ nlohmann::json RunOdometry(const RunRequest& request) {
   ProgressMeter progress(count, request.quiet);
   RunTally tally;
   const auto wall_start = std::chrono::steady_clock::now();
+  // Slam mode: the loops closed so far, on the progress line (how far the background got).
+  const auto loops_closed = [&pipeline] {
+    const std::optional<int> loops = pipeline.LoopsClosed();
+    return loops ? ", " + std::to_string(*loops) + " loops closed" : std::string();
+  };
 
   auto process = [&](LoadedFrame& current, const RgbdFrame* next) {
     const ProcessedFrame processed = pipeline.Process(current.frame, next, current.truth_mask);
@@ -351,11 +356,11 @@ nlohmann::json RunOdometry(const RunRequest& request) {
     trajectory.Append(FormatTrajectory({{record.stamp, record.world_from_camera}}));
     timing.Write(record);
     tally.Add(record);
-    progress.Update(tally.processing.size());
+    progress.Update(tally.processing.size(), loops_closed);
   };
 
   RunEnd end = ProcessFrames(&loader, process, request.stop_requested, tally);
-  progress.Finish(tally.processing.size());
+  progress.Finish(tally.processing.size(), loops_closed);
   FinishLoops(&pipeline, request.out_dir, request.map, &report, &end);
 
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -73,11 +73,13 @@ TEST(LoopCorrection, EachLoopIsClosedWhenItsKeyframeComesAndLaterKeyframesFollow
   }
   // The first loop was solved over the keyframes seen by then, the second over a few more.
   EXPECT_EQ(after_first.solves, 1);
+  EXPECT_EQ(after_first.loops, 1);
   EXPECT_EQ(after_first.keyframe_poses.size(), static_cast<size_t>(kRing + 2));
   const KeyframeCorrection latest = correction.Latest();
   ASSERT_TRUE(latest.report.ok) << latest.report.failure;
   EXPECT_EQ(latest.solves, 2);
   EXPECT_EQ(latest.loops, 2);
+  EXPECT_EQ(correction.LoopsClosed(), 2);
   EXPECT_EQ(latest.keyframe_poses.size(), static_cast<size_t>(kRing + 4));
   // Tracking's drift past the loop (over 0.3 m) is gone from the keyframes that closed it.
   EXPECT_GT(PositionError(keyframes[kRing + 3]->world_from_camera, kRing + 3), 0.3);
