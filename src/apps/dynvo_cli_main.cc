@@ -125,9 +125,10 @@ int main(int argc, char** argv) {
     }
     if (!request.quiet) {
       const auto& t = report["time"];
-      const std::string loops = report.contains("loops")
-                                    ? ", " + std::to_string(report["loops"]["accepted"].get<int>()) + " loops closed"
-                                    : std::string();
+      const std::string loops =
+          report.contains("loops")
+              ? ", " + std::to_string(report["loops"]["pose_graph"]["loops"].get<int>()) + " loops closed"
+              : std::string();
       std::fprintf(
           stderr, "dynvo-cli: %zu frames, processing median %.2f ms/frame, %.1f frames/s end to end%s; outputs in %s\n",
           report["counts"]["frames"].get<size_t>(),

@@ -89,7 +89,10 @@ LoopClosingResult LoopCloser::Finish() {
   for (const LoopCandidate& c : result.candidates) result.loops += c.accepted();
   result.pose_graph = correction.report;
   if (correction.solves == 0) result.pose_graph.failure = "no loop";
+  if (!result.pose_graph.ok && correction.failures > 0) result.pose_graph.failure = correction.last_failure;
   result.pose_graph_solves = correction.solves;
+  result.pose_graph_failures = correction.failures;
+  result.loops_closed = correction.loops;
   result.pose_graph_ms = correction.solve_ms;
   result.keyframe_poses = CorrectedKeyframePoses(keyframes_, correction);
   for (const auto& keyframe : keyframes_) {

@@ -45,9 +45,11 @@ struct LoopClosingOptions {
 
 struct LoopClosingResult {
   std::vector<LoopCandidate> candidates;     // every candidate examined, in keyframe order
-  int loops = 0;                             // accepted, each a pose graph edge
+  int loops = 0;                             // accepted
+  int loops_closed = 0;                      // of those, in the pose graph (a failed solve drops its new loops)
   PoseGraphReport pose_graph;                // the last successful solve; ok = false: no loop closed
   int pose_graph_solves = 0;                 // one per keyframe that accepted a loop, in the background
+  int pose_graph_failures = 0;               // solves that failed (their loops dropped)
   double pose_graph_ms = 0.0;                // their wall time together
   BundleAdjustmentReport bundle_adjustment;  // the full BA after the pose graph (ok = false: not run or failed)
   double bundle_adjustment_ms = 0.0;         // its wall time
@@ -100,6 +102,7 @@ class LoopCloser {
   // The pose graph as the background last solved it, for a live consumer: a copy, without
   // waiting (what it covers depends on how far the searches got).
   KeyframeCorrection LatestCorrection() const { return correction_->Latest(); }
+  // The loops in the latest solution, without copying it or waiting.
   int LoopsClosed() const { return correction_->LoopsClosed(); }
 
   // Waits for the searches (and the pose graphs they solve), refines the corrected keyframes

@@ -18,7 +18,7 @@ void LoopCorrection::Add(const std::shared_ptr<const LoopKeyframe>& keyframe,
   std::vector<PoseGraphNode> nodes;
   std::vector<PoseGraphEdge> edges;
   // From the last solution: the keyframes it placed where it put them, the later ones moved by
-  // its drift; the new loops' error is all that is left to spread.
+  // its correction; the new loops' error is all that is left to spread.
   const std::vector<Pose> start_poses = CorrectedKeyframePoses(keyframes_, solution_);
   for (size_t k = 0; k < keyframes_.size(); ++k) {
     nodes.push_back({static_cast<int64_t>(k), start_poses[k], k == 0});
@@ -33,16 +33,17 @@ void LoopCorrection::Add(const std::shared_ptr<const LoopKeyframe>& keyframe,
   const std::lock_guard<std::mutex> lock(mutex_);
   ++latest_.solves;
   latest_.solve_ms += ms;
-  if (!report.ok) {
+  if (!report.ok) {  // the loops that broke the graph leave it; the last solution stands
+    loop_edges_.resize(loops_before);
     ++latest_.failures;
-    if (!latest_.report.ok) latest_.report = report;  // its failure, until one solves
+    latest_.last_failure = report.failure;
     return;
   }
   latest_.loops = static_cast<int>(loop_edges_.size());
   latest_.report = report;
   latest_.keyframe_poses.clear();
   for (const PoseGraphNode& node : nodes) latest_.keyframe_poses.push_back(node.world_from_camera);
-  latest_.drift = latest_.keyframe_poses.back() * keyframes_.back()->world_from_camera.inverse();
+  latest_.correction = latest_.keyframe_poses.back() * keyframes_.back()->world_from_camera.inverse();
   solution_ = latest_;
 }
 
@@ -57,11 +58,11 @@ int LoopCorrection::LoopsClosed() const {
 }
 
 std::vector<Pose> CorrectedKeyframePoses(const std::vector<std::shared_ptr<const LoopKeyframe>>& keyframes,
-                                         const KeyframeCorrection& correction) {
+                                         const KeyframeCorrection& solution) {
   std::vector<Pose> poses;
   for (size_t k = 0; k < keyframes.size(); ++k)
-    poses.push_back(k < correction.keyframe_poses.size() ? correction.keyframe_poses[k]
-                                                         : correction.drift * keyframes[k]->world_from_camera);
+    poses.push_back(k < solution.keyframe_poses.size() ? solution.keyframe_poses[k]
+                                                       : solution.correction * keyframes[k]->world_from_camera);
   return poses;
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "core/pose.h"
@@ -17,17 +18,18 @@ namespace dynvo {
 
 // The latest solved pose graph.
 struct KeyframeCorrection {
-  int loops = 0;           // accepted loops it closed (0: nothing solved yet, no poses)
-  int solves = 0;          // pose graphs solved so far, one per keyframe that accepted a loop
-  int failures = 0;        // solves that failed (each left the solution before it in place)
-  double solve_ms = 0.0;   // wall time of all solves
-  PoseGraphReport report;  // the latest successful solve (ok = false: none yet; failure: why the first failed)
+  int loops = 0;             // accepted loops it closed (0: nothing solved yet, no poses)
+  int solves = 0;            // pose graphs solved so far, one per keyframe that accepted a loop
+  int failures = 0;          // solves that failed: each left the solution before it in place, its new loops out
+  std::string last_failure;  // why the last failed solve failed
+  double solve_ms = 0.0;     // wall time of all solves
+  PoseGraphReport report;    // the latest successful solve (ok = false: none yet)
   // world_from_camera of keyframes 0 .. size-1 (the keyframes seen when it was solved),
   // corrected.
   std::vector<Pose> keyframe_poses;
   // Corrected pose times tracked pose^-1 of its last keyframe (identity when nothing is solved):
   // a pose tracked after it, multiplied by this, is in the corrected frame.
-  Pose drift = Pose::Identity();
+  Pose correction = Pose::Identity();
 };
 
 class LoopCorrection {
@@ -37,7 +39,8 @@ class LoopCorrection {
   // Called once per keyframe, in keyframe order, by one thread at a time (the search chain):
   // adds the keyframe with its tracking edge to the one before and the accepted loops among
   // `examined` (its search's candidates); when there was one, solves the graph of every
-  // keyframe added so far, starting from the last solution, and publishes the new one.
+  // keyframe added so far, starting from the last solution, and publishes the new one. When the
+  // solve fails, those loops leave the graph and the last solution stands.
   void Add(const std::shared_ptr<const LoopKeyframe>& keyframe, const std::vector<LoopCandidate>& examined);
 
   // A copy of the latest solution; never waits for a solve in progress.
@@ -56,9 +59,9 @@ class LoopCorrection {
 };
 
 // Every keyframe's corrected pose: the solution's, and after the keyframes it covers, the tracked
-// pose moved by its drift (a keyframe joined to the graph only by tracking's edges sits there at
+// pose moved by its correction (a keyframe joined to the graph only by tracking's edges sits there at
 // the graph's optimum). Tracked poses unchanged when nothing was solved.
 std::vector<Pose> CorrectedKeyframePoses(const std::vector<std::shared_ptr<const LoopKeyframe>>& keyframes,
-                                         const KeyframeCorrection& correction);
+                                         const KeyframeCorrection& solution);
 
 }  // namespace dynvo

@@ -76,8 +76,11 @@ void WriteLoopOutputs(const std::string& out_dir, const LoopClosingResult& resul
 nlohmann::json LoopsJson(const LoopClosingResult& result, bool with_map) {
   int verified = 0;
   for (const LoopCandidate& c : result.candidates) verified += c.verified;
-  nlohmann::json graph = {
-      {"solved", result.pose_graph.ok}, {"solves", result.pose_graph_solves}, {"ms", result.pose_graph_ms}};
+  nlohmann::json graph = {{"solved", result.pose_graph.ok},
+                          {"solves", result.pose_graph_solves},
+                          {"failed_solves", result.pose_graph_failures},
+                          {"loops", result.loops_closed},
+                          {"ms", result.pose_graph_ms}};
   if (result.pose_graph.ok)
     graph.update({{"iterations", result.pose_graph.iterations},
                   {"initial_cost", result.pose_graph.initial_cost},

@@ -15,7 +15,7 @@ class ProgressMeter {
   // Records that `done` frames are finished; prints when a second has passed since the last line,
   // with `note()` (e.g. ", 3 loops closed") after the rate; `note` is only called then.
   void Update(size_t done, const std::function<std::string()>& note = {});
-  // Prints the final line (unless quiet).
+  // Prints the final line (unless quiet), with `note()` as Update does.
   void Finish(size_t done, const std::function<std::string()>& note = {});
 
  private:

@@ -58,7 +58,7 @@ TEST(LoopCorrection, NothingIsSolvedBeforeALoop) {
   EXPECT_EQ(latest.loops, 0);
   EXPECT_FALSE(latest.report.ok);
   EXPECT_TRUE(latest.keyframe_poses.empty());
-  EXPECT_TRUE(latest.drift.isApprox(Pose::Identity()));
+  EXPECT_TRUE(latest.correction.isApprox(Pose::Identity()));
 }
 
 TEST(LoopCorrection, EachLoopIsClosedWhenItsKeyframeComesAndLaterKeyframesFollowByTheDrift) {
@@ -110,8 +110,8 @@ TEST(LoopCorrection, EachLoopIsClosedWhenItsKeyframeComesAndLaterKeyframesFollow
   EXPECT_LT(PositionError(corrected.back(), kRing + 9), 0.05);
 }
 
-TEST(LoopCorrection, AFailedSolveKeepsTheSolutionBeforeIt) {
-  const auto keyframes = TrackedKeyframes(kRing + 3);
+TEST(LoopCorrection, AFailedSolveKeepsTheSolutionBeforeItAndDropsItsLoop) {
+  const auto keyframes = TrackedKeyframes(kRing + 4);
   LoopCorrection correction({});
   for (int i = 0; i <= kRing + 1; ++i)
     correction.Add(keyframes[i],
@@ -125,9 +125,19 @@ TEST(LoopCorrection, AFailedSolveKeepsTheSolutionBeforeIt) {
   const KeyframeCorrection latest = correction.Latest();
   EXPECT_EQ(latest.solves, 2);
   EXPECT_EQ(latest.failures, 1);
+  EXPECT_FALSE(latest.last_failure.empty());
   EXPECT_TRUE(latest.report.ok);
+  EXPECT_EQ(latest.loops, 1);
   ASSERT_EQ(latest.keyframe_poses.size(), solved.keyframe_poses.size());
-  EXPECT_TRUE(latest.drift.isApprox(solved.drift));
+  EXPECT_TRUE(latest.correction.isApprox(solved.correction));
+  // The broken loop left the graph: the next loop solves again, with the first one.
+  correction.Add(keyframes[kRing + 3], {AcceptedLoop(kRing + 3, 3)});
+  const KeyframeCorrection after = correction.Latest();
+  EXPECT_EQ(after.solves, 3);
+  EXPECT_EQ(after.failures, 1);
+  EXPECT_EQ(after.loops, 2);
+  EXPECT_EQ(after.keyframe_poses.size(), static_cast<size_t>(kRing + 4));
+  EXPECT_LT(PositionError(after.keyframe_poses[kRing + 3], kRing + 3), 0.02);
 }
 
 }  // namespace
