@@ -46,7 +46,7 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
   for (Person& p : people_) {
     if (current_from_previous) p.box = CarryBox(p.box, *current_from_previous).value_or(p.box);
     ++p.missed;
-    ++p.since_evidence;
+    p.evidence = std::max(p.evidence - 1, 0);
     p.pending_centre.reset();
   }
   std::vector<bool> taken(people_.size(), false), moving;
@@ -59,11 +59,14 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     p.missed = 0;
     p.pending_centre = evidence.centre_in_camera;
     const std::optional<double> speed = Speed(p);
+    // A frame with evidence banks one frame of "moving" (two, as every person spent one above),
+    // a frame without spends one: a walker stays moving for hold_frames after stopping, a still
+    // person's lone jitter for a frame.
     if (evidence.difference_share >= options_.min_difference_share || (speed && *speed >= options_.min_speed_m_s))
-      p.since_evidence = 0;
+      p.evidence = std::min(p.evidence + 2, options_.hold_frames);
     // Without enough past to measure its speed a person may be walking toward the camera:
     // judged moving until the past shows otherwise, so that no map is seeded on them.
-    moving.push_back(p.since_evidence <= options_.hold_frames || !speed);
+    moving.push_back(p.evidence > 0 || !speed);
     if (person == nullptr) added.push_back(fresh);
   }
   people_.erase(std::remove_if(people_.begin(), people_.end(),
