@@ -78,6 +78,7 @@ SOURCES = (
     Source("dev",        SYNTH,  "xyz",                                      1),
     Source("dev",        SYNTH,  "rpy_fast",                                 4),
     Source("dev",        SYNTH,  "xyz",                                      5, plain=True),
+    Source("dev",        SYNTH,  "halfsphere",                              16, plain=True),
     Source("validation", INSERT, "rgbd_dataset_freiburg2_desk_head50",       2, VALIDATION_PERSON),
     Source("validation", SYNTH,  "rpy",                                      2),
     Source("validation", SYNTH,  "halfsphere",                               3),
