@@ -6,8 +6,12 @@
 # the rest). Writes bench/results/suite_<split>.csv and suite_<split>.md.
 #   bash bench/suite.sh [--split dev|validation|all] [--frames N] [--configs baseline,paper,dynvo]
 #                       [--out DIR] [--results DIR] [--jobs N] [--set KEY=VALUE]... [--seeds N] [--update]
+#                       [--sequences NAME,NAME]
 #   --update keeps the other configs' rows of the CSVs in --results: after a change that moves
 #   one config only, bash bench/suite.sh --configs dynvo --seeds 5 --update
+#   --sequences runs only the rows whose sequence name holds one of NAME (with --update the
+#   rest stay): after a new source, bash bench/suite.sh --split dev --seeds 5 --update
+#   --sequences halfsphere_plain_s16
 #   The configs find the person detector's model at data/models/ of the folder the suite runs in
 #   (bash tools/fetch_models.sh puts it there; without it dynvo runs geometric only and ipl
 #   fails). The tables of docs/results.md: from the repository root, after fetching the model,

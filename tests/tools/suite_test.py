@@ -301,6 +301,51 @@ class WithFakeBinaries(unittest.TestCase):
         with open(os.path.join(self.bin, "cli.log")) as f:
             self.assertTrue(all("paper.json" in call for call in f.read().splitlines()))
 
+    def read_dev(self):
+        with open(os.path.join(self.tmp.name, "results", "suite_dev.csv")) as f:
+            return list(csv.DictReader(f))
+
+    def test_sequences_run_only_the_rows_named(self):
+        result = self.run_suite("--sequences", "xyz_plain_s5,nothing_like_it")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual([(r["sequence"], r["config"]) for r in self.read_dev()],
+                         [("synth_%s_xyz_plain_s5" % p, c) for p in suite.PRESETS for c in ("baseline", "paper")])
+        self.assertEqual(len(self.calls()), len(suite.PRESETS) + 1)  # its sequences and their twin, generated
+        result = self.run_suite("--sequences", "nothing_like_it")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("suite: error: --sequences: no sequence of dev matches nothing_like_it", result.stderr)
+
+    def test_update_with_sequences_keeps_every_other_row_in_place(self):
+        self.assertEqual(self.run_suite().returncode, 0)
+        full = self.read_dev()
+        os.remove(os.path.join(self.bin, "cli.log"))
+        self.fake("rpe", FAKE_RPE.replace("r=0.02", "r=0.03"))  # the rows run again now differ
+        result = self.run_suite("--sequences", "walking_xyz_plain_s5", "--update")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = self.read_dev()
+        self.assertEqual([(r["sequence"], r["config"]) for r in rows], [(r["sequence"], r["config"]) for r in full])
+        again = [r for r in rows if r["ratio"] == "3.0"]
+        self.assertEqual([(r["sequence"], r["config"]) for r in again],
+                         [("synth_tum_walking_xyz_plain_s5", c) for c in ("baseline", "paper")])
+        with open(os.path.join(self.bin, "cli.log")) as f:  # the row and its twin, each config
+            self.assertEqual(len(f.read().splitlines()), 2 * 2)
+
+    def test_update_with_sequences_adds_a_new_sources_rows(self):
+        self.assertEqual(self.run_suite().returncode, 0)
+        full = self.read_dev()
+        path = os.path.join(self.tmp.name, "results", "suite_dev.csv")
+        suite.write_csv(path, [r for r in full if "halfsphere_plain" not in r["sequence"]])  # the table of before
+        result = self.run_suite("--configs", "paper", "--update")
+        self.assertEqual(result.returncode, 1)
+        self.assertRegex(result.stderr, r"--update: has no rows of synth_\w+_halfsphere_plain_s16\S*: run them with "
+                                        r"its configs baseline too")
+        result = self.run_suite("--sequences", "xyz_plain", "--update")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("--update: holds other sequences than this split has now", result.stderr)
+        result = self.run_suite("--sequences", "halfsphere_plain", "--update")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(self.read_dev(), full)
+
     def test_update_refuses_other_seeds_or_no_csv_before_any_run(self):
         self.assertEqual(self.run_suite().returncode, 0)
         os.remove(os.path.join(self.bin, "cli.log"))

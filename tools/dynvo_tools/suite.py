@@ -17,6 +17,7 @@ Tracking on real-looking frames is chaotic: another RANSAC seed can move a row's
 Normally run through bench/suite.sh, which builds the binaries first:
   python3 -m dynvo_tools suite [--split dev|validation|all] [--frames N] [--configs a,b,c]
                                [--out DIR] [--results DIR] [--jobs N] [--seeds N] [--update]
+                               [--sequences NAME,NAME]
   python3 -m dynvo_tools suite-table --split dev|validation|all [--results DIR]
   (tools/ on PYTHONPATH; env: DYNVO_BIN_DIR, default $DYNVO_BUILD_DIR/bin or build/bin;
    DYNVO_SHARED_DIR, default ../shared)
@@ -466,21 +467,36 @@ def splits_of(args: argparse.Namespace) -> tuple[str, ...]:
     return SPLITS if args.split == "all" else (args.split,)
 
 
-def kept_rows(path: str, rows: list[RowSpec], args: argparse.Namespace) -> list[dict[str, str]]:
-    """With --update: the rows of the results CSV at path of the configs not run now, checked
-    before any run: the same sequences and seeds as this run's. A ToolError otherwise."""
+def selected_rows(rows: list[RowSpec], names: tuple[str, ...]) -> list[RowSpec]:
+    """The rows whose sequence name contains one of `names` (all rows when `names` is empty)."""
+    return [row for row in rows if not names or any(name in row.sequence.name for name in names)]
+
+
+def kept_rows(path: str, rows: list[RowSpec], run: list[RowSpec], args: argparse.Namespace) -> list[dict[str, str]]:
+    """With --update: the rows of the results CSV at path that this run does not replace (the
+    configs not run now, and every config of the split's rows not in `run`), checked before any
+    run: no sequence the split does not have, every one it has either there or in `run` with
+    every config the CSV holds, and the same seeds. A ToolError otherwise."""
     old = read_results(path)
-    if {r["sequence"] for r in old} != {row.sequence.name for row in rows}:
+    running = {row.sequence.name for row in run}
+    there = {r["sequence"] for r in old}
+    missing = {row.sequence.name for row in rows} - there
+    if there - {row.sequence.name for row in rows} or not missing <= running:
         raise table_error(path, "--update: holds other sequences than this split has now: run every config")
-    kept = [r for r in old if r["config"] not in args.configs]
+    others = sorted({r["config"] for r in old} - set(args.configs))
+    if missing and others:
+        raise table_error(path, "--update: has no rows of %s: run them with its configs %s too" % (
+            ",".join(sorted(missing)), ",".join(others)))
+    kept = [r for r in old if r["config"] not in args.configs or r["sequence"] not in running]
     if kept and seeds_of(kept) != args.seeds:
         raise table_error(path, "--update: made with --seeds %d, not %d" % (seeds_of(kept), args.seeds))
     return kept
 
 
-def merged_rows(path: str, kept: list[dict[str, str]], new: list[dict[str, str]]) -> list[dict[str, str]]:
-    """The kept rows of other configs and the new rows, sequence by sequence, the kept configs
-    first; a ToolError when a sequence's frames differ between them (another --frames)."""
+def merged_rows(path: str, kept: list[dict[str, str]], new: list[dict[str, str]],
+                sequences: list[str]) -> list[dict[str, str]]:
+    """The kept rows and the new rows, sequence by sequence in the order of `sequences`, the kept
+    configs first; a ToolError when a sequence's frames differ between them (another --frames)."""
     frames = {r["sequence"]: r["frames"] for r in new if r["status"] == "ok"}
     for r in kept:
         if r["status"] == "ok" and frames.get(r["sequence"], r["frames"]) != r["frames"]:
@@ -488,8 +504,7 @@ def merged_rows(path: str, kept: list[dict[str, str]], new: list[dict[str, str]]
                 r["sequence"], r["frames"], frames[r["sequence"]]))
     configs = list(dict.fromkeys([r["config"] for r in kept] + [r["config"] for r in new]))
     by_key = {(r["sequence"], r["config"]): r for r in kept + new}
-    return [by_key[(sequence, config)] for sequence in dict.fromkeys(r["sequence"] for r in new)
-            for config in configs if (sequence, config) in by_key]
+    return [by_key[(sequence, config)] for sequence in sequences for config in configs if (sequence, config) in by_key]
 
 
 def run_suite(args: argparse.Namespace) -> int:
@@ -499,8 +514,12 @@ def run_suite(args: argparse.Namespace) -> int:
     splits = splits_of(args)
     out_dir = os.path.abspath(args.out)
     shared = shared_dir()
-    rows = {s: split_rows(s, args.frames, out_dir, shared) for s in splits}
-    kept = {s: kept_rows(os.path.join(args.results, "suite_%s.csv" % s), rows[s], args) for s in splits} \
+    every = {s: split_rows(s, args.frames, out_dir, shared) for s in splits}
+    rows = {s: selected_rows(every[s], args.sequences) for s in splits}
+    splits = tuple(s for s in splits if rows[s])  # a split none of --sequences names is left as it is
+    if not splits:
+        raise ToolError("--sequences: no sequence of %s matches %s" % (args.split, ",".join(args.sequences)))
+    kept = {s: kept_rows(os.path.join(args.results, "suite_%s.csv" % s), every[s], rows[s], args) for s in splits} \
         if args.update else {}
     ready = [row for split in splits for row in rows[split] if row.available]
     if len(ready) < sum(len(r) for r in rows.values()):
@@ -521,7 +540,8 @@ def run_suite(args: argparse.Namespace) -> int:
         csv_path = os.path.join(args.results, "suite_%s.csv" % split)
         new_rows = [result_row(row, c, results.get((row.sequence, c)), results.get((row.twin, c)),
                                tuple(args.overrides)) for row in rows[split] for c in args.configs]
-        write_csv(csv_path, merged_rows(csv_path, kept[split], new_rows) if args.update else new_rows)
+        order = [row.sequence.name for row in every[split]]
+        write_csv(csv_path, merged_rows(csv_path, kept[split], new_rows, order) if args.update else new_rows)
         write_markdown(csv_path, csv_path[:-4] + ".md")
         log("suite", "wrote %s and .md" % display_path(csv_path))
     log("suite", "done in %.0f s" % (time.monotonic() - start))
@@ -590,6 +610,10 @@ def add_parser(commands: argparse._SubParsersAction) -> None:
                         help="keep the rows of the configs not in --configs from the split's CSV in --results"
                              " (same sequences and --seeds, checked first; same frames); the configs run replace"
                              " theirs there or join them: one config's figures after it changed")
+    parser.add_argument("--sequences", type=comma_list, default=(), metavar="NAME,NAME",
+                        help="run only the rows whose sequence name contains one of these (and their twins);"
+                             " with --update the table keeps every other row: a new source's rows, or a"
+                             " row regenerated")
     parser.set_defaults(run=functools.partial(checked_run, parser))
     table = commands.add_parser(
         "suite-table", help="the benchmark suite's Markdown tables again from their CSVs",
