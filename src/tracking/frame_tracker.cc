@@ -140,10 +140,16 @@ TrackingResult FrameTracker::Track(const FrameFeatures& features, double stamp, 
   std::vector<Match> matches;
   std::string failure;
   PoseEstimate estimate = EstimateFramePose(features, predicted_world_from_camera.inverse(), matches, failure, result);
-  // The frame's features plus the masked ones verified static, when any are.
+  // The frame's features plus the masked ones verified static, when any are; when the frame's
+  // features alone fail, the pose from all of them.
   FrameFeatures joined;
-  const bool readmitted = estimate.ok && masked != nullptr && masked->size() > 0 && options_.readmit_masked_px > 0.0 &&
-                          ReadmitStaticFeatures(features, *masked, joined, matches, estimate, result);
+  const bool readmit = masked != nullptr && masked->size() > 0 && options_.readmit_masked_px > 0.0;
+  const bool rescued = !estimate.ok && readmit &&
+                       EstimateWithMaskedFeatures(features, *masked, predicted_world_from_camera.inverse(), joined,
+                                                  matches, estimate, result);
+  if (rescued) result.note = "tracked with the masked features too: " + failure;
+  const bool readmitted = rescued || (estimate.ok && readmit &&
+                                      ReadmitStaticFeatures(features, *masked, joined, matches, estimate, result));
   const FrameFeatures& used = readmitted ? joined : features;
   if (estimate.ok && options_.new_point_confirmations > 0) ConfirmNewMapPoints(used, matches, estimate, result);
   moving_features_.assign(used.size(), 0);
@@ -258,6 +264,46 @@ void FrameTracker::EstimateOnWideSearch(const FrameFeatures& features, const Pos
     failure += "; " + std::to_string(matches.size()) + " matches on the wide search";
   }
   result.pose_ms += MillisecondsSince(start);
+}
+
+bool FrameTracker::EstimateWithMaskedFeatures(const FrameFeatures& features, const FrameFeatures& masked,
+                                              const Pose& predicted_camera_from_world, FrameFeatures& joined,
+                                              std::vector<Match>& matches, PoseEstimate& estimate,
+                                              TrackingResult& result) {
+  FrameFeatures all = features;
+  AppendFeatures(masked, &all);
+  std::vector<Match> all_matches;
+  std::string failure;
+  const TrackingResult before = result;  // what the failed attempt reports, kept if this one fails too
+  PoseEstimate all_estimate = EstimateFramePose(all, predicted_camera_from_world, all_matches, failure, result);
+  result.match_ms += before.match_ms;
+  result.pose_ms += before.pose_ms;
+  if (!all_estimate.ok) {
+    result.num_matches = before.num_matches;
+    result.used_epnp = before.used_epnp;
+    return false;
+  }
+  // The frame's matches as they are; a masked feature's only when an inlier, indexing `joined`.
+  const int n = static_cast<int>(features.size());
+  std::vector<Match> kept;
+  std::vector<uint8_t> inliers;
+  result.readmitted.clear();
+  for (size_t i = 0; i < all_matches.size(); ++i) {
+    Match match = all_matches[i];
+    if (match.feature_index >= n) {
+      if (!all_estimate.inliers[i]) continue;
+      result.readmitted.push_back(match.feature_index - n);
+      match.feature_index = n + static_cast<int>(result.readmitted.size()) - 1;
+    }
+    kept.push_back(match);
+    inliers.push_back(all_estimate.inliers[i]);
+  }
+  joined = features;
+  AppendFeatures(SelectFeatures(masked, result.readmitted), &joined);
+  all_estimate.inliers = std::move(inliers);
+  matches = std::move(kept);
+  estimate = std::move(all_estimate);
+  return true;
 }
 
 bool FrameTracker::ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked,
@@ -577,7 +623,9 @@ void BindConfigKeys(const std::string& prefix, TrackerOptions* o, ConfigRegistry
           "match again this close to the first pose estimate and refine once more (0 = off)");
   r->Bind(prefix + ".readmit_masked_px", &o->readmit_masked_px,
           "features the dynamic mask removed rejoin the pose and the keyframe when they match the "
-          "map within this reprojection error (pixels) of the pose estimated without them; 0 = off");
+          "map within this reprojection error (pixels) of the pose estimated without them; on a frame "
+          "whose unmasked features give no pose, the pose comes from all of them and its inliers "
+          "rejoin; 0 = off");
   r->Bind(prefix + ".lines_max_rotation_deg_s", &o->lines_max_rotation_deg_s,
           "deg/s: a frame taken while the camera turns faster leaves its line segments out of the pose and the map "
           "(features.lines; a rolling shutter shears them and motion blur shifts them then; 0 = never)");

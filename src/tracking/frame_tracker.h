@@ -108,10 +108,11 @@ class FrameTracker {
   // the identity (state kInitializing, with a note); that frame's camera is the world frame.
   // `masked` (optional) are the features the dynamic mask removed: with readmit_masked_px > 0,
   // those that match the map at the pose from `features` within that error rejoin the final
-  // pose refinement and the keyframe; the others are never used. `lines` (optional) are the
-  // frame's line segments off the mask: matched to the map's lines at the pose from the points,
-  // they refine it with the points (PoseLineCost), and a keyframe keeps those with depth that
-  // matched none. Throws InputError when the feature arrays disagree in size.
+  // pose refinement and the keyframe; when `features` alone give no pose, the pose comes from
+  // all of them and the masked ones that are its inliers rejoin. The others are never used.
+  // `lines` (optional) are the frame's line segments off the mask: matched to the map's lines at
+  // the pose from the points, they refine it with the points (PoseLineCost), and a keyframe
+  // keeps those with depth that matched none. Throws InputError when the feature arrays disagree in size.
   TrackingResult Track(const FrameFeatures& features, double stamp, const FrameFeatures* masked = nullptr,
                        const FrameLines* lines = nullptr);
 
@@ -160,6 +161,15 @@ class FrameTracker {
   // unchanged, when none is accepted or that refinement fails.
   bool ReadmitStaticFeatures(const FrameFeatures& features, const FrameFeatures& masked, FrameFeatures& joined,
                              std::vector<Match>& matches, PoseEstimate& estimate, TrackingResult& result);
+  // The frame's unmasked features gave no pose: EstimateFramePose on them and the masked ones
+  // together. The map holds no points on what moves, so a mover's features find few map
+  // matches, and the robust estimate sets aside those they find. On success the masked
+  // features that are inliers of that pose are readmitted (result.readmitted), `joined` gets
+  // `features` followed by them, and `matches` / `estimate` index `joined`; false, with
+  // `matches` and `estimate` unchanged, when that pose fails too.
+  bool EstimateWithMaskedFeatures(const FrameFeatures& features, const FrameFeatures& masked,
+                                  const Pose& predicted_camera_from_world, FrameFeatures& joined,
+                                  std::vector<Match>& matches, PoseEstimate& estimate, TrackingResult& result);
   // Correspondences() when there are at least min_matches matches; false (outputs untouched) otherwise.
   bool EnoughCorrespondences(const FrameFeatures& features, const std::vector<Match>& matches,
                              std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector2d>& pixels) const;

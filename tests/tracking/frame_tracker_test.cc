@@ -5,6 +5,7 @@
 #include <functional>
 #include <iostream>
 #include <random>
+#include <string>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -459,6 +460,52 @@ double Rms(const std::vector<double>& v) {
   double sum = 0.0;
   for (double x : v) sum += x * x;
   return v.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(v.size()));
+}
+
+TEST(FrameTracker, AFrameItsUnmaskedFeaturesCannotTrackIsTrackedWithTheMaskedOnes) {
+  // The room and a box in front of it, mapped over frames 0-19. On frame 20 the mask leaves 10
+  // of the room's features (fewer than min_matches) and takes the rest with the box, which has
+  // moved 10 cm (about 17 px). With readmission the frame is tracked from all of them: the pose
+  // is right, the room's masked features rejoin, the box's do not. Without, it is lost.
+  const test::SyntheticWorld room = RoomWorld();
+  const test::SyntheticWorld box = test::MakeWorld(200, {-1.2, -0.8, 2.8}, {0.2, 0.8, 3.4}, 77);
+  for (const double readmit_px : {3.0, 0.0}) {
+    TrackerOptions options;
+    options.readmit_masked_px = readmit_px;
+    std::mt19937 rng(8);
+    test::RenderOptions render;
+    render.max_features = 400;
+    TrackerWithMapper tracker(room.camera, options);
+    StepError steps;
+    for (int i = 0; i <= 20; ++i) {
+      const Pose truth = SmoothPath(i);
+      FrameFeatures room_features = test::Render(room, truth.inverse(), render, rng);
+      const FrameFeatures box_features =
+          test::Render(i < 20 ? box : ShiftedAlongX(box, 0.1), truth.inverse(), render, rng);
+      if (i < 20) {
+        AppendFeatures(box_features, &room_features);
+        const TrackingResult r = tracker.Track(room_features, i / kFrameRate);
+        steps.Next(r.world_from_camera, truth);
+        continue;
+      }
+      std::vector<int> few, rest;
+      for (int k = 0; k < static_cast<int>(room_features.size()); ++k) (k < 10 ? few : rest).push_back(k);
+      FrameFeatures masked = SelectFeatures(room_features, rest);
+      AppendFeatures(box_features, &masked);
+      const TrackingResult r = tracker.Track(SelectFeatures(room_features, few), i / kFrameRate, &masked);
+      if (readmit_px == 0.0) {
+        EXPECT_EQ(r.state, TrackingState::kLost);
+        EXPECT_TRUE(r.readmitted.empty());
+        continue;
+      }
+      ASSERT_EQ(r.state, TrackingState::kTracking) << r.note;
+      EXPECT_NE(r.note.find("masked features"), std::string::npos) << r.note;
+      EXPECT_LT(steps.Next(r.world_from_camera, truth).first, 0.005);  // frame errors here: 1-3 mm
+      EXPECT_GT(r.readmitted.size(), rest.size() / 2);
+      for (int k : r.readmitted) EXPECT_LT(k, static_cast<int>(rest.size())) << "a box feature rejoined";
+      EXPECT_EQ(r.feature_inliers.size(), few.size() + r.readmitted.size());
+    }
+  }
 }
 
 TEST(FrameTracker, NewPointsOnAnUnmaskedMovingBoxDoNotPullThePoseOnceConfirmed) {
