@@ -33,12 +33,31 @@ MovingPeople::Person* MovingPeople::Match(const cv::Rect2d& box, std::vector<boo
 }
 
 std::optional<double> MovingPeople::Speed(const Person& person) const {
-  if (person.centres.size() < 2) return std::nullopt;
-  const auto& [last_stamp, last] = person.centres.back();
-  for (const auto& [stamp, centre] : person.centres)  // the oldest within the window
-    if (last_stamp - stamp <= options_.speed_window_s && last_stamp - stamp >= 0.5 * options_.speed_window_s)
-      return (last - centre).norm() / (last_stamp - stamp);
-  return std::nullopt;
+  // The centres within the window of the newest one (at least half a window of them): their
+  // velocity fitted by least squares. Every centre weighs in, so the jitter of one (the box's
+  // height changing for a frame) moves it less than it moves a difference of two.
+  const double last_stamp = person.centres.empty() ? 0.0 : person.centres.back().first;
+  double mean_stamp = 0.0, oldest = last_stamp;
+  Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const auto& [stamp, centre] : person.centres) {
+    if (last_stamp - stamp > options_.speed_window_s) continue;
+    mean_stamp += stamp;
+    mean_centre += centre;
+    oldest = std::min(oldest, stamp);
+    ++n;
+  }
+  if (n < 2 || last_stamp - oldest < 0.5 * options_.speed_window_s) return std::nullopt;
+  mean_stamp /= n;
+  mean_centre /= n;
+  double spread = 0.0;
+  Eigen::Vector3d covariance = Eigen::Vector3d::Zero();
+  for (const auto& [stamp, centre] : person.centres) {
+    if (last_stamp - stamp > options_.speed_window_s) continue;
+    spread += (stamp - mean_stamp) * (stamp - mean_stamp);
+    covariance += (stamp - mean_stamp) * (centre - mean_centre);
+  }
+  return (covariance / spread).norm();
 }
 
 std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,

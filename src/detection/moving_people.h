@@ -2,14 +2,15 @@
 // Which of the people a detector finds are moving: each person is followed over frames (its box
 // carried by the camera's motion and matched by overlap) and judged from geometry, not from
 // being a person. Moving when the compensated frame difference covers part of them, or when
-// their centre moves in the world (camera motion removed by the tracked poses) faster than a
-// walk-in-place: the second catches people walking straight toward or away from the camera,
-// whom differencing cannot see. The verdict has hysteresis by counting: each frame with that
-// evidence banks a frame of "moving" (up to hold_frames), each frame spends one, so a walker
-// who stops stays moving for a while and a seated person's lone jitter (the box growing for a
-// frame) passes with it. A person whose speed cannot be measured yet (too little past) is
-// judged moving: still is a verdict the geometry has to give, or the first frames would seed
-// the map on a walker.
+// their centre moves in the world (camera motion removed by the tracked poses; the velocity
+// fitted to their centres over the last speed_window_s) faster than a walk-in-place: the
+// second catches people walking straight toward or away from the camera, whom differencing
+// cannot see. The verdict has hysteresis by counting: each frame with that evidence banks a
+// frame of "moving" (up to hold_frames), each frame spends one, so a walker who stops stays
+// moving for a while and a seated person's lone jitter (the box growing for a frame) passes
+// with it. A person whose speed cannot be measured yet (too little past) is judged moving:
+// still is a verdict the geometry has to give, or the first frames would seed the map on a
+// walker.
 
 #include <deque>
 #include <optional>
@@ -24,7 +25,8 @@ namespace dynvo {
 struct MovingPeopleOptions {
   double min_difference_share = 0.15;  // moving: the frame difference covers this share of the person ...
   double min_speed_m_s = 0.3;          // ... or their centre moves this fast in the world
-  double speed_window_s = 0.3;         // the speed is measured over this much of the person's past
+  double speed_window_s = 0.3;         // the velocity is fitted to this much of the person's past
+                                       // (at least half of it, or the speed is not known)
   int hold_frames = 15;                // at most this many frames of moving banked, one per frame of evidence
   double match_iou = 0.3;              // a detection continues the person whose carried box overlaps it this much
   int forget_frames = 10;              // a person not detected for this many frames is forgotten
@@ -57,7 +59,8 @@ class MovingPeople {
     int evidence = 0;                                        // frames of moving banked, <= hold_frames
     int missed = 0;
   };
-  // The world speed of a person over the window, m/s; nullopt without enough past.
+  // The world speed of a person over the window (least squares over its centres), m/s; nullopt
+  // without half a window of past.
   std::optional<double> Speed(const Person& person) const;
   // The person of the last frames continuing `box`, or nullptr.
   Person* Match(const cv::Rect2d& box, std::vector<bool>& taken);
