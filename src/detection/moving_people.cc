@@ -57,6 +57,7 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
     spread += (stamp - mean_stamp) * (stamp - mean_stamp);
     covariance += (stamp - mean_stamp) * (centre - mean_centre);
   }
+  if (spread <= 0.0) return std::nullopt;
   return (covariance / spread).norm();
 }
 

@@ -61,12 +61,11 @@ TEST(MovingPeople, AWalkerWhoStopsStaysMovingForTheHold) {
 
 TEST(MovingPeople, ASeatedPersonsJitterAboveAWalksSpeedOnLoneFramesLeavesThemStill) {
   // Seated still, but every 8th frame the box (and the centre with it) jumps 12 cm up for one
-  // frame. Two centres 0.15-0.3 s apart, one of them on a jump, read 0.4-0.8 m/s (24 of the
-  // 110 frames counted moving). The velocity fitted to the 9-10 centres of a full window
-  // weighs a centre at its end by at most 2 s^-1 (0.24 m/s for 12 cm): under the bar from
-  // frame 9 on; the crossings of frames 6-8 (6-8 centres, the jump of frame 0 among them)
-  // are still held on frames 10 and 11.
-  // Holding 15 frames after each crossing would keep them moving on 85 of them.
+  // frame. Two centres 0.15-0.3 s apart, one of them on a jump, read 0.4-0.8 m/s: a speed
+  // taken from two kept them moving on 24 of the 110 frames counted. The velocity fitted to
+  // the 9-10 centres of a full window weighs a centre at its end by at most 2 s^-1 (0.24 m/s
+  // for 12 cm): under the bar from frame 9 on; the crossings of frames 6-8 (6-8 centres, the
+  // jump of frame 0 among them) are still held on frames 10 and 11.
   const auto verdicts = Verdicts(
       120, [](int i) { return Eigen::Vector3d(0.0, i % 8 == 0 ? -0.12 : 0.0, 2.0); }, [](int) { return 0.0; });
   int moving = 0;
@@ -77,8 +76,8 @@ TEST(MovingPeople, ASeatedPersonsJitterAboveAWalksSpeedOnLoneFramesLeavesThemSti
 TEST(MovingPeople, ASeatedPersonsCentreJitteringOnEveryFrameLeavesThemStill) {
   // Seated still, the centre 5 cm to one side and the other on alternate frames (a detector's
   // box that flickers): two centres an odd number of frames apart differ by 10 cm, 0.33 m/s
-  // over 0.3 s, above a walk-in-place. The fitted velocity is 0.09 m/s: still once half the
-  // window lies behind (frame 6), and on every frame after.
+  // over 0.3 s, above a walk-in-place. The fitted velocity is at most 0.09 m/s: still once
+  // half the window lies behind (frame 6), and on every frame after.
   const auto verdicts = Verdicts(
       60, [](int i) { return Eigen::Vector3d(i % 2 == 0 ? 0.05 : -0.05, 0.0, 2.0); }, [](int) { return 0.0; });
   for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_EQ(verdicts[i], i < 6) << "frame " << i;
