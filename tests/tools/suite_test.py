@@ -261,7 +261,7 @@ class WithFakeBinaries(unittest.TestCase):
               for r in rows if r["status"] == "ok"]
         scenarios = suite.PRESETS
         # the dev split's synthetic camera paths, rooms, seeds
-        paths = ("xyz_s1", "rpy_fast_s4", "xyz_plain_s5", "halfsphere_plain_s16")
+        paths = ("xyz_s1", "rpy_s7", "rpy_fast_s4", "xyz_plain_s5", "halfsphere_plain_s16")
         self.assertEqual(ok, [("synth_%s_%s" % (s, p), c, "2.0", *(("-", "-") if c == "baseline" else ("0.5", "0.75")),
                                "28.0") for p in paths for s in scenarios for c in ("baseline", "paper")])
         self.assertEqual([r["sequence"] for r in rows if r["status"] == suite.NOT_RUN],
@@ -280,7 +280,7 @@ class WithFakeBinaries(unittest.TestCase):
                           for r in rows}, {("2", "0.02", "0.02", "0.02", "2.0", "0.02;0.02")})
         with open(os.path.join(self.bin, "cli.log")) as f:
             calls = f.read().splitlines()
-        self.assertEqual(len(calls), 2 * 2 * 4 * (len(suite.PRESETS) + 1))  # seeds x configs x paths x sequences
+        self.assertEqual(len(calls), 2 * 2 * 5 * (len(suite.PRESETS) + 1))  # seeds x configs x paths x sequences
         for seed in (1, 2):
             ran = [c for c in calls if "homography.seed=%d --set tracking.pose.seed=%d" % (seed, seed) in c]
             self.assertEqual(len(ran), len(calls) // 2)
@@ -296,7 +296,7 @@ class WithFakeBinaries(unittest.TestCase):
         with open(os.path.join(self.tmp.name, "results", "suite_dev.csv")) as f:
             rows = list(csv.DictReader(f))
         ok = [(r["config"], r["ratio"]) for r in rows if r["status"] == "ok"]
-        self.assertEqual(ok, [("baseline", "2.0"), ("paper", "3.0")] * 4 * len(suite.PRESETS))  # 4 synthetic sources
+        self.assertEqual(ok, [("baseline", "2.0"), ("paper", "3.0")] * 5 * len(suite.PRESETS))  # 5 synthetic sources
         self.assertEqual(len([r for r in rows if r["status"] == suite.NOT_RUN]), 2 * len(suite.PRESETS))
         with open(os.path.join(self.bin, "cli.log")) as f:
             self.assertTrue(all("paper.json" in call for call in f.read().splitlines()))

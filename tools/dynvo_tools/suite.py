@@ -77,6 +77,7 @@ class Source:
 SOURCES = (
     Source("dev",        INSERT, "rgbd_dataset_freiburg1_rpy_head150",       1, DEV_PERSON),
     Source("dev",        SYNTH,  "xyz",                                      1),
+    Source("dev",        SYNTH,  "rpy",                                      7),
     Source("dev",        SYNTH,  "rpy_fast",                                 4),
     Source("dev",        SYNTH,  "xyz",                                      5, plain=True),
     Source("dev",        SYNTH,  "halfsphere",                              16, plain=True),
