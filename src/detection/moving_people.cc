@@ -36,15 +36,15 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
   // The centres within the window of the newest one (at least half a window of them): their
   // velocity fitted by least squares. Every centre weighs in, so the jitter of one (the box's
   // height changing for a frame) moves it less than it moves a difference of two.
-  const double last_stamp = person.centres.empty() ? 0.0 : person.centres.back().first;
+  const double last_stamp = person.centres.empty() ? 0.0 : person.centres.back().stamp;
   double mean_stamp = 0.0, oldest = last_stamp;
   Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
   int n = 0;
-  for (const auto& [stamp, centre] : person.centres) {
-    if (last_stamp - stamp > options_.speed_window_s) continue;
-    mean_stamp += stamp;
-    mean_centre += centre;
-    oldest = std::min(oldest, stamp);
+  for (const Centre& c : person.centres) {
+    if (last_stamp - c.stamp > options_.speed_window_s) continue;
+    mean_stamp += c.stamp;
+    mean_centre += c.world;
+    oldest = std::min(oldest, c.stamp);
     ++n;
   }
   if (n < 2 || last_stamp - oldest < 0.5 * options_.speed_window_s) return std::nullopt;
@@ -52,13 +52,20 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
   mean_centre /= n;
   double spread = 0.0;
   Eigen::Vector3d covariance = Eigen::Vector3d::Zero();
-  for (const auto& [stamp, centre] : person.centres) {
-    if (last_stamp - stamp > options_.speed_window_s) continue;
-    spread += (stamp - mean_stamp) * (stamp - mean_stamp);
-    covariance += (stamp - mean_stamp) * (centre - mean_centre);
+  std::optional<Eigen::Vector3d> cut_vertical;  // the image's vertical of the newest centre cut at its top or bottom
+  for (const Centre& c : person.centres) {
+    if (last_stamp - c.stamp > options_.speed_window_s) continue;
+    if (c.cut_vertical) cut_vertical = c.cut_vertical;
+    spread += (c.stamp - mean_stamp) * (c.stamp - mean_stamp);
+    covariance += (c.stamp - mean_stamp) * (c.world - mean_centre);
   }
   if (spread <= 0.0) return std::nullopt;
-  return (covariance / spread).norm();
+  Eigen::Vector3d velocity = covariance / spread;
+  // Where the image's top or bottom edge cuts a person, the centre of what is in view moves up
+  // and down with the view (a seated person cut by the bottom edge rises and sinks as the camera
+  // pitches): the speed leaves that component out. Walking stays in the other two.
+  if (cut_vertical) velocity -= velocity.dot(*cut_vertical) * *cut_vertical;
+  return velocity.norm();
 }
 
 std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
@@ -67,7 +74,7 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     if (current_from_previous) p.box = CarryBox(p.box, *current_from_previous).value_or(p.box);
     ++p.missed;
     p.evidence = std::max(p.evidence - 1, 0);
-    p.pending_centre.reset();
+    p.pending.reset();
   }
   std::vector<bool> taken(people_.size(), false), moving;
   std::vector<Person> added;
@@ -77,7 +84,7 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     Person& p = person != nullptr ? *person : fresh;
     p.box = evidence.box;
     p.missed = 0;
-    p.pending_centre = evidence.centre_in_camera;
+    p.pending = evidence;
     const std::optional<double> speed = Speed(p);
     // A frame with evidence banks one frame of "moving" (two, as every person spent one above),
     // a frame without spends one: a walker stays moving for hold_frames after stopping, a still
@@ -98,10 +105,14 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
 
 void MovingPeople::Observe(double stamp, const Eigen::Isometry3d& world_from_camera) {
   for (Person& p : people_) {
-    if (!p.pending_centre) continue;
-    p.centres.emplace_back(stamp, world_from_camera * *p.pending_centre);
-    while (p.centres.size() > 2 && stamp - p.centres.front().first > options_.speed_window_s) p.centres.pop_front();
-    p.pending_centre.reset();
+    if (!p.pending || !p.pending->centre_in_camera) continue;
+    Centre centre;
+    centre.stamp = stamp;
+    centre.world = world_from_camera * *p.pending->centre_in_camera;
+    if (p.pending->cut_top_or_bottom) centre.cut_vertical = world_from_camera.linear().col(1);
+    p.centres.push_back(centre);
+    while (p.centres.size() > 2 && stamp - p.centres.front().stamp > options_.speed_window_s) p.centres.pop_front();
+    p.pending.reset();
   }
 }
 

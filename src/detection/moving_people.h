@@ -5,12 +5,13 @@
 // their centre moves in the world (camera motion removed by the tracked poses; the velocity
 // fitted to their centres over the last speed_window_s) faster than a walk-in-place: the
 // second catches people walking straight toward or away from the camera, whom differencing
-// cannot see. The verdict has hysteresis by counting: each frame with that evidence banks a
-// frame of "moving" (up to hold_frames), each frame spends one, so a walker who stops stays
-// moving for a while and a seated person's lone jitter (the box growing for a frame) passes
-// with it. A person whose speed cannot be measured yet (too little past) is judged moving:
-// still is a verdict the geometry has to give, or the first frames would seed the map on a
-// walker.
+// cannot see. Where the image's top or bottom edge cuts a person, the vertical part of their
+// centre's motion is the view's, and the speed leaves it out. The verdict has hysteresis by
+// counting: each frame with that evidence banks a frame of "moving" (up to hold_frames), each
+// frame spends one, so a walker who stops stays moving for a while and a seated person's lone
+// jitter (the box growing for a frame) passes with it. A person whose speed cannot be measured
+// yet (too little past) is judged moving: still is a verdict the geometry has to give, or the
+// first frames would seed the map on a walker.
 
 #include <deque>
 #include <optional>
@@ -37,6 +38,7 @@ struct PersonEvidence {
   cv::Rect2d box;                                   // image pixels
   double difference_share = 0.0;                    // share of the person's mask the frame difference covers
   std::optional<Eigen::Vector3d> centre_in_camera;  // PersonCentre of the person's silhouette
+  bool cut_top_or_bottom = false;                   // the silhouette reaches the image's top or bottom edge
 };
 
 class MovingPeople {
@@ -52,11 +54,17 @@ class MovingPeople {
   void Observe(double stamp, const Eigen::Isometry3d& world_from_camera);
 
  private:
+  // Where a person was in one frame: the centre of what the image showed of them, in the world.
+  struct Centre {
+    double stamp = 0.0;
+    Eigen::Vector3d world = Eigen::Vector3d::Zero();
+    std::optional<Eigen::Vector3d> cut_vertical;  // cut by the top or bottom edge: the image's vertical (unit, world)
+  };
   struct Person {
     cv::Rect2d box;
-    std::deque<std::pair<double, Eigen::Vector3d>> centres;  // (stamp, world centre), oldest first
-    std::optional<Eigen::Vector3d> pending_centre;           // frame t's, in its camera, until Observe
-    int evidence = 0;                                        // frames of moving banked, <= hold_frames
+    std::deque<Centre> centres;             // oldest first
+    std::optional<PersonEvidence> pending;  // frame t's, in its camera, until Observe
+    int evidence = 0;                       // frames of moving banked, <= hold_frames
     int missed = 0;
   };
   // The world speed of a person over the window (least squares over its centres), m/s; nullopt

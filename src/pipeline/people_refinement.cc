@@ -29,6 +29,8 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
     const double share =
         pixels > 0 && !differencing.empty() ? cv::countNonZero(silhouette & differencing) / double(pixels) : 0.0;
     evidence.push_back({person.box, share, PersonCentre(silhouette, frame.depth, camera_)});
+    evidence.back().cut_top_or_bottom =
+        cv::countNonZero(silhouette.row(0)) > 0 || cv::countNonZero(silhouette.row(silhouette.rows - 1)) > 0;
     silhouettes.push_back(std::move(silhouette));
   }
   const std::vector<bool> moving = moving_.Judge(

@@ -83,6 +83,44 @@ TEST(MovingPeople, ASeatedPersonsCentreJitteringOnEveryFrameLeavesThemStill) {
   for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_EQ(verdicts[i], i < 6) << "frame " << i;
 }
 
+// One person whose silhouette the image's bottom edge cuts on frames where `cut(i)`, centre at
+// `centre(i)` (camera = world, y down), no frame difference; the verdict of each frame.
+template <typename Centre, typename Cut>
+std::vector<bool> VerdictsWhenCut(int frames, Centre centre, Cut cut) {
+  MovingPeople people;
+  std::vector<bool> verdicts;
+  for (int i = 0; i < frames; ++i) {
+    PersonEvidence evidence{cv::Rect2d(200, 240, 80, 240), 0.0, centre(i)};
+    evidence.cut_top_or_bottom = cut(i);
+    verdicts.push_back(people.Judge({evidence}, Eigen::Matrix3d::Identity()).at(0));
+    people.Observe(i * kFrame, Eigen::Isometry3d::Identity());
+  }
+  return verdicts;
+}
+
+TEST(MovingPeople, ASeatedPersonCutByTheBottomEdgeIsNotMovedByThePartInView) {
+  // Seated still, cut by the bottom edge while the camera pitches: more of their legs comes into
+  // view each frame, and the centre of what is in view sinks 1.5 cm a frame (0.45 m/s, as on the
+  // generated rpy path). Cut, that vertical motion is the view's, not theirs: still from frame 6
+  // (half a window of past); the same centres uncut read as a person moving down.
+  const auto sinking = [](int i) { return Eigen::Vector3d(0.0, 0.2 + 0.015 * i, 2.0); };
+  const auto cut = VerdictsWhenCut(40, sinking, [](int) { return true; });
+  const auto whole = VerdictsWhenCut(40, sinking, [](int) { return false; });
+  for (size_t i = 0; i < cut.size(); ++i) {
+    EXPECT_EQ(cut[i], i < 6) << "frame " << i;
+    EXPECT_TRUE(whole[i]) << "frame " << i;
+  }
+}
+
+TEST(MovingPeople, AWalkerCutByTheBottomEdgeStaysMoving) {
+  // Walking across at 1 m/s, cut by the bottom edge on every second frame: the horizontal
+  // motion still counts.
+  const auto verdicts = VerdictsWhenCut(
+      40, [](int i) { return Eigen::Vector3d(1.0 * i * kFrame, 0.2 + 0.01 * i, 2.0); },
+      [](int i) { return i % 2 == 0; });
+  for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_TRUE(verdicts[i]) << "frame " << i;
+}
+
 TEST(MovingPeople, BoxesCarriedByTheCamerasMotionKeepTheirPerson) {
   MovingPeople people;
   // Frames 0-9: a person standing still, judged still by frame 9. The camera then pans 60 px:
