@@ -1,6 +1,7 @@
 #include "detection/moving_people.h"
 
 #include <algorithm>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -12,6 +13,32 @@ namespace {
 double Iou(const cv::Rect2d& a, const cv::Rect2d& b) {
   const double inter = (a & b).area();
   return inter > 0.0 ? inter / (a.area() + b.area() - inter) : 0.0;
+}
+
+struct TimedPoint {
+  double stamp = 0.0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
+// The velocity fitted to `samples` by least squares; nullopt when their stamps do not spread.
+std::optional<Eigen::Vector3d> FittedVelocity(const std::vector<TimedPoint>& samples) {
+  if (samples.size() < 2) return std::nullopt;
+  double mean_stamp = 0.0;
+  Eigen::Vector3d mean_point = Eigen::Vector3d::Zero();
+  for (const TimedPoint& s : samples) {
+    mean_stamp += s.stamp;
+    mean_point += s.point;
+  }
+  mean_stamp /= static_cast<double>(samples.size());
+  mean_point /= static_cast<double>(samples.size());
+  double spread = 0.0;
+  Eigen::Vector3d covariance = Eigen::Vector3d::Zero();
+  for (const TimedPoint& s : samples) {
+    spread += (s.stamp - mean_stamp) * (s.stamp - mean_stamp);
+    covariance += (s.stamp - mean_stamp) * (s.point - mean_point);
+  }
+  if (spread <= 0.0) return std::nullopt;
+  return Eigen::Vector3d(covariance / spread);
 }
 
 }  // namespace
@@ -36,36 +63,35 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
   // The centres within the window of the newest one (at least half a window of them): their
   // velocity fitted by least squares. Every centre weighs in, so the jitter of one (the box's
   // height changing for a frame) moves it less than it moves a difference of two.
-  const double last_stamp = person.centres.empty() ? 0.0 : person.centres.back().stamp;
-  double mean_stamp = 0.0, oldest = last_stamp;
-  Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
-  int n = 0;
-  for (const Centre& c : person.centres) {
-    if (last_stamp - c.stamp > options_.speed_window_s) continue;
-    mean_stamp += c.stamp;
-    mean_centre += c.world;
-    oldest = std::min(oldest, c.stamp);
-    ++n;
-  }
-  if (n < 2 || last_stamp - oldest < 0.5 * options_.speed_window_s) return std::nullopt;
-  mean_stamp /= n;
-  mean_centre /= n;
-  double spread = 0.0;
-  Eigen::Vector3d covariance = Eigen::Vector3d::Zero();
+  if (person.centres.empty()) return std::nullopt;
+  const Centre& newest = person.centres.back();
+  std::vector<TimedPoint> centres, ends;
   std::optional<Eigen::Vector3d> cut_vertical;  // the image's vertical of the newest centre cut at its top or bottom
+  bool ends_agree = true;                       // every centre cut by the newest one's edge, its end known
   for (const Centre& c : person.centres) {
-    if (last_stamp - c.stamp > options_.speed_window_s) continue;
+    if (newest.stamp - c.stamp > options_.speed_window_s) continue;
+    centres.push_back({c.stamp, c.world});
     if (c.cut_vertical) cut_vertical = c.cut_vertical;
-    spread += (c.stamp - mean_stamp) * (c.stamp - mean_stamp);
-    covariance += (c.stamp - mean_stamp) * (c.world - mean_centre);
+    if (c.end && c.cut == newest.cut)
+      ends.push_back({c.stamp, *c.end});
+    else
+      ends_agree = false;
   }
-  if (spread <= 0.0) return std::nullopt;
-  Eigen::Vector3d velocity = covariance / spread;
+  if (centres.size() < 2 || newest.stamp - centres.front().stamp < 0.5 * options_.speed_window_s) return std::nullopt;
+  std::optional<Eigen::Vector3d> velocity = FittedVelocity(centres);
+  if (!velocity) return std::nullopt;
   // Where the image's top or bottom edge cuts a person, the centre of what is in view moves up
   // and down with the view (a seated person cut by the bottom edge rises and sinks as the camera
-  // pitches): the speed leaves that component out. Walking stays in the other two.
-  if (cut_vertical) velocity -= velocity.dot(*cut_vertical) * *cut_vertical;
-  return velocity.norm();
+  // pitches): that component is taken from the end in view (their head, which rises when they
+  // stand up), or left out when the window's centres were not all cut by the same edge. Walking
+  // stays in the other two.
+  if (cut_vertical) {
+    const Eigen::Vector3d& vertical = *cut_vertical;
+    *velocity -= velocity->dot(vertical) * vertical;
+    const std::optional<Eigen::Vector3d> end_velocity = ends_agree ? FittedVelocity(ends) : std::nullopt;
+    if (end_velocity) *velocity += end_velocity->dot(vertical) * vertical;
+  }
+  return velocity->norm();
 }
 
 std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
@@ -109,7 +135,9 @@ void MovingPeople::Observe(double stamp, const Eigen::Isometry3d& world_from_cam
     Centre centre;
     centre.stamp = stamp;
     centre.world = world_from_camera * *p.pending->centre_in_camera;
-    if (p.pending->cut_top_or_bottom) centre.cut_vertical = world_from_camera.linear().col(1);
+    if (p.pending->cut != EdgeCut::kNone) centre.cut_vertical = world_from_camera.linear().col(1);
+    centre.cut = p.pending->cut;
+    if (p.pending->end_in_camera) centre.end = world_from_camera * *p.pending->end_in_camera;
     p.centres.push_back(centre);
     while (p.centres.size() > 2 && stamp - p.centres.front().stamp > options_.speed_window_s) p.centres.pop_front();
     p.pending.reset();

@@ -6,7 +6,8 @@
 // fitted to their centres over the last speed_window_s) faster than a walk-in-place: the
 // second catches people walking straight toward or away from the camera, whom differencing
 // cannot see. Where the image's top or bottom edge cuts a person, the vertical part of their
-// centre's motion is the view's, and the speed leaves it out. The verdict has hysteresis by
+// centre's motion is the view's: the speed takes it from the end in view instead (the head of a
+// person the bottom edge cuts), or leaves it out. The verdict has hysteresis by
 // counting: each frame with that evidence banks a frame of "moving" (up to hold_frames), each
 // frame spends one, so a walker who stops stays moving for a while and a seated person's lone
 // jitter (the box growing for a frame) passes with it. A person whose speed cannot be measured
@@ -33,12 +34,17 @@ struct MovingPeopleOptions {
   int forget_frames = 10;              // a person not detected for this many frames is forgotten
 };
 
+// Which of the image's top and bottom edges a person's silhouette reaches.
+enum class EdgeCut { kNone, kTop, kBottom, kBoth };
+
 // One detected person in frame t.
 struct PersonEvidence {
   cv::Rect2d box;                                   // image pixels
   double difference_share = 0.0;                    // share of the person's mask the frame difference covers
   std::optional<Eigen::Vector3d> centre_in_camera;  // PersonCentre of the person's silhouette
-  bool cut_top_or_bottom = false;                   // the silhouette reaches the image's top or bottom edge
+  EdgeCut cut = EdgeCut::kNone;
+  // Cut by one edge only: the other end (PersonEnd: the top of the head when the bottom is cut).
+  std::optional<Eigen::Vector3d> end_in_camera = std::nullopt;
 };
 
 class MovingPeople {
@@ -59,6 +65,8 @@ class MovingPeople {
     double stamp = 0.0;
     Eigen::Vector3d world = Eigen::Vector3d::Zero();
     std::optional<Eigen::Vector3d> cut_vertical;  // cut by the top or bottom edge: the image's vertical (unit, world)
+    EdgeCut cut = EdgeCut::kNone;
+    std::optional<Eigen::Vector3d> end;  // cut by one edge: the end in view, in the world
   };
   struct Person {
     cv::Rect2d box;

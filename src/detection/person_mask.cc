@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -152,23 +153,56 @@ cv::Mat PersonMaskFromBox(const cv::Mat& depth, const cv::Rect2d& box, const Per
   return mask;
 }
 
-std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera) {
-  std::array<std::vector<double>, 3> axes;
+namespace {
+
+// The back-projected points of `silhouette` that have depth, on every 4th row and column.
+std::vector<Eigen::Vector3d> SilhouettePoints(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera) {
+  std::vector<Eigen::Vector3d> points;
   for (int y = 0; y < silhouette.rows; y += 4)
     for (int x = 0; x < silhouette.cols; x += 4) {
       const float z = depth.at<float>(y, x);
-      if (silhouette.at<uchar>(y, x) == 0 || z <= 0.0f) continue;
-      const Eigen::Vector3d point = camera.Backproject(Eigen::Vector2d(x, y), z);
-      for (int i = 0; i < 3; ++i) axes[i].push_back(point[i]);
+      if (silhouette.at<uchar>(y, x) != 0 && z > 0.0f) points.push_back(camera.Backproject(Eigen::Vector2d(x, y), z));
     }
-  if (axes[0].empty()) return std::nullopt;
-  Eigen::Vector3d centre;
+  return points;
+}
+
+// The per-axis median of `points` (not empty).
+Eigen::Vector3d AxisMedian(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d median;
+  std::vector<double> values(points.size());
   for (int i = 0; i < 3; ++i) {
-    std::vector<double>& values = axes[i];
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    centre[i] = values[values.size() / 2];
+    for (size_t k = 0; k < points.size(); ++k) values[k] = points[k][i];
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+    median[i] = values[values.size() / 2];
   }
-  return centre;
+  return median;
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera) {
+  const std::vector<Eigen::Vector3d> points = SilhouettePoints(silhouette, depth, camera);
+  if (points.empty()) return std::nullopt;
+  return AxisMedian(points);
+}
+
+std::optional<Eigen::Vector3d> PersonEnd(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera,
+                                         PersonEndSide side) {
+  // A person's body lies within this of their median depth (a seated person's knees included);
+  // the background their silhouette's margin takes in lies beyond it, and would be the end.
+  constexpr double kBodyDepth = 0.4;  // m
+  // The end is the height of this many points from it: past a stray point or two of an edge.
+  constexpr size_t kEndRank = 5;
+  const std::vector<Eigen::Vector3d> points = SilhouettePoints(silhouette, depth, camera);
+  if (points.empty()) return std::nullopt;
+  Eigen::Vector3d end = AxisMedian(points);
+  std::vector<double> heights;  // camera y, down
+  for (const Eigen::Vector3d& p : points)
+    if (std::abs(p.z() - end.z()) <= kBodyDepth) heights.push_back(side == PersonEndSide::kTop ? p.y() : -p.y());
+  if (heights.size() <= kEndRank) return std::nullopt;
+  std::nth_element(heights.begin(), heights.begin() + kEndRank, heights.end());
+  end.y() = side == PersonEndSide::kTop ? heights[kEndRank] : -heights[kEndRank];
+  return end;
 }
 
 }  // namespace dynvo

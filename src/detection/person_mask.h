@@ -58,4 +58,15 @@ double PersonDepth(const cv::Mat& depth, const cv::Rect& box, const PersonMaskOp
 // nullopt when none has depth.
 std::optional<Eigen::Vector3d> PersonCentre(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera);
 
+enum class PersonEndSide { kTop, kBottom };
+
+// The top end of the person of `silhouette` (their head, when it is in view) or their bottom end,
+// in the camera: PersonCentre's point at the height (camera y) of the silhouette's topmost (or
+// lowest) points, of those within a body's depth of its median depth, so that the background the
+// silhouette's margin takes in above or below them is not the end. The height is the 6th point
+// from the end, past stray edge points; it does not move as the opposite end enters or leaves the
+// view. nullopt when too few points have depth.
+std::optional<Eigen::Vector3d> PersonEnd(const cv::Mat& silhouette, const cv::Mat& depth, const Camera& camera,
+                                         PersonEndSide side);
+
 }  // namespace dynvo

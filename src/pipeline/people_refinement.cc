@@ -6,6 +6,18 @@
 #include "core/stopwatch.h"
 
 namespace dynvo {
+namespace {
+
+// Which of the image's top and bottom edges `silhouette` (CV_8UC1, non-zero = the person) reaches.
+EdgeCut EdgeCutOf(const cv::Mat& silhouette) {
+  const bool top = cv::countNonZero(silhouette.row(0)) > 0;
+  const bool bottom = cv::countNonZero(silhouette.row(silhouette.rows - 1)) > 0;
+  if (top && bottom) return EdgeCut::kBoth;
+  if (top) return EdgeCut::kTop;
+  return bottom ? EdgeCut::kBottom : EdgeCut::kNone;
+}
+
+}  // namespace
 
 PeopleRefinement::PeopleRefinement(const Camera& camera, std::unique_ptr<PersonDetector> detector,
                                    const DetectorOptions& options, Executor& executor)
@@ -28,9 +40,15 @@ void PeopleRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
     const cv::Mat& differencing = mask->source_mask;  // the person's own motion, not what they hide
     const double share =
         pixels > 0 && !differencing.empty() ? cv::countNonZero(silhouette & differencing) / double(pixels) : 0.0;
-    evidence.push_back({person.box, share, PersonCentre(silhouette, frame.depth, camera_)});
-    evidence.back().cut_top_or_bottom =
-        cv::countNonZero(silhouette.row(0)) > 0 || cv::countNonZero(silhouette.row(silhouette.rows - 1)) > 0;
+    PersonEvidence& e = evidence.emplace_back();
+    e.box = person.box;
+    e.difference_share = share;
+    e.centre_in_camera = PersonCentre(silhouette, frame.depth, camera_);
+    e.cut = EdgeCutOf(silhouette);
+    // Cut by one edge: the other end is in view (the head of a person the bottom edge cuts).
+    if (e.cut == EdgeCut::kBottom || e.cut == EdgeCut::kTop)
+      e.end_in_camera = PersonEnd(silhouette, frame.depth, camera_,
+                                  e.cut == EdgeCut::kBottom ? PersonEndSide::kTop : PersonEndSide::kBottom);
     silhouettes.push_back(std::move(silhouette));
   }
   const std::vector<bool> moving = moving_.Judge(

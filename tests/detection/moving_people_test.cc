@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -83,15 +85,19 @@ TEST(MovingPeople, ASeatedPersonsCentreJitteringOnEveryFrameLeavesThemStill) {
   for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_EQ(verdicts[i], i < 6) << "frame " << i;
 }
 
+std::optional<Eigen::Vector3d> NoEnd(int) { return std::nullopt; }
+
 // One person whose silhouette the image's bottom edge cuts on frames where `cut(i)`, centre at
-// `centre(i)` (camera = world, y down), no frame difference; the verdict of each frame.
-template <typename Centre, typename Cut>
-std::vector<bool> VerdictsWhenCut(int frames, Centre centre, Cut cut) {
+// `centre(i)` and top end (their head) at `head(i)` (camera = world, y down), no frame
+// difference; the verdict of each frame.
+template <typename Centre, typename Cut, typename Head = decltype(&NoEnd)>
+std::vector<bool> VerdictsWhenCut(int frames, Centre centre, Cut cut, Head head = &NoEnd) {
   MovingPeople people;
   std::vector<bool> verdicts;
   for (int i = 0; i < frames; ++i) {
     PersonEvidence evidence{cv::Rect2d(200, 240, 80, 240), 0.0, centre(i)};
-    evidence.cut_top_or_bottom = cut(i);
+    evidence.cut = cut(i) ? EdgeCut::kBottom : EdgeCut::kNone;
+    if (cut(i)) evidence.end_in_camera = head(i);
     verdicts.push_back(people.Judge({evidence}, Eigen::Matrix3d::Identity()).at(0));
     people.Observe(i * kFrame, Eigen::Isometry3d::Identity());
   }
@@ -109,6 +115,29 @@ TEST(MovingPeople, ASeatedPersonCutByTheBottomEdgeIsNotMovedByThePartInView) {
   for (size_t i = 0; i < cut.size(); ++i) {
     EXPECT_EQ(cut[i], i < 6) << "frame " << i;
     EXPECT_TRUE(whole[i]) << "frame " << i;
+  }
+}
+
+TEST(MovingPeople, ASeatedPersonCutByTheBottomEdgeIsStillByTheirHead) {
+  // As above, their head in view and still: still from frame 6.
+  const auto verdicts = VerdictsWhenCut(
+      40, [](int i) { return Eigen::Vector3d(0.0, 0.2 + 0.015 * i, 2.0); }, [](int) { return true; },
+      [](int) { return std::optional<Eigen::Vector3d>(Eigen::Vector3d(0.0, -0.4, 2.0)); });
+  for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_EQ(verdicts[i], i < 6) << "frame " << i;
+}
+
+TEST(MovingPeople, APersonStandingUpIsMovingByTheirHeadThoughTheBottomEdgeCutsThem) {
+  // Standing up in front of the camera, cut by the bottom edge: what is in view keeps its centre
+  // (the legs leave the view as the head rises), the head rises 2 cm a frame (0.6 m/s). Moving
+  // on every frame by the head; without it, still from frame 6.
+  const auto centre = [](int) { return Eigen::Vector3d(0.0, 0.2, 2.0); };
+  const auto rising = [](int i) { return std::optional<Eigen::Vector3d>(Eigen::Vector3d(0.0, -0.2 - 0.02 * i, 2.0)); };
+  const auto always = [](int) { return true; };
+  const auto by_head = VerdictsWhenCut(30, centre, always, rising);
+  const auto without = VerdictsWhenCut(30, centre, always);
+  for (size_t i = 0; i < by_head.size(); ++i) {
+    EXPECT_TRUE(by_head[i]) << "frame " << i;
+    EXPECT_EQ(without[i], i < 6) << "frame " << i;
   }
 }
 

@@ -148,5 +148,32 @@ TEST(PersonMask, ThePersonsCentreIsNotPulledByTheBackgroundItsSilhouetteTakesIn)
   EXPECT_FALSE(PersonCentre(s.person, cv::Mat::zeros(480, 640, CV_32FC1), camera).has_value());  // no depth
 }
 
+TEST(PersonMask, ThePersonsEndsAreTheirHeadAndFeet) {
+  const Scene s = MakeScene();
+  const Camera camera;  // 525 px, centre (319.5, 239.5); at 2 m a row is 3.8 mm
+  const auto height_of_row = [](double row) { return (row - 239.5) * 2.0 / 525.0; };
+  const std::optional<Eigen::Vector3d> centre = PersonCentre(s.person, s.depth, camera);
+  const std::optional<Eigen::Vector3d> top = PersonEnd(s.person, s.depth, camera, PersonEndSide::kTop);
+  const std::optional<Eigen::Vector3d> bottom = PersonEnd(s.person, s.depth, camera, PersonEndSide::kBottom);
+  ASSERT_TRUE(centre && top && bottom);
+  // The head's top is row 90, the feet's row 434; sampled every 4th row, the 6th point from
+  // either end lies within two sample rows of it (the head is 15 samples wide at its widest).
+  EXPECT_NEAR(top->y(), height_of_row(90), 3 * 4 * 2.0 / 525.0);
+  EXPECT_NEAR(bottom->y(), height_of_row(434), 3 * 4 * 2.0 / 525.0);
+  EXPECT_EQ(top->x(), centre->x());  // across and in depth, the centre
+  EXPECT_EQ(bottom->z(), centre->z());
+
+  // The silhouette grown by 8 px into the wall at 4 m, whose points above the head lie twice as
+  // high in the camera, and cut at row 300 (the image's bottom edge below the waist): the top
+  // end stays on the head.
+  cv::Mat grown;
+  cv::dilate(s.person, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(17, 17)));
+  grown.rowRange(300, grown.rows).setTo(0);
+  const std::optional<Eigen::Vector3d> cut_top = PersonEnd(grown, s.depth, camera, PersonEndSide::kTop);
+  ASSERT_TRUE(cut_top.has_value());
+  EXPECT_NEAR(cut_top->y(), top->y(), 1e-9);
+  EXPECT_FALSE(PersonEnd(s.person, cv::Mat::zeros(480, 640, CV_32FC1), camera, PersonEndSide::kTop).has_value());
+}
+
 }  // namespace
 }  // namespace dynvo

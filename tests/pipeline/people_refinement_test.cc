@@ -93,5 +93,32 @@ TEST(PeopleRefinement, APersonJudgedStillLeavesTheMaskOneTheDifferencingCoversSt
   }
 }
 
+TEST(PeopleRefinement, APersonTheBottomEdgeCutsIsJudgedByTheirHead) {
+  // A person 1 m away whose silhouette reaches the image's last row, their head at row 230:
+  // seated, it stays there (still from frame 6); standing up, it rises 8 px a frame (15 mm,
+  // 0.46 m/s), and the centre of what is in view rises half as fast: moving throughout.
+  for (const bool standing_up : {false, true}) {
+    int calls = 0;
+    Executor executor(0);
+    const cv::Rect2d box(290, 60, 100, 420);
+    PeopleRefinement refinement(Camera{}, std::make_unique<test::ScriptedDetector>(&calls, std::vector<int>{}, box),
+                                DetectorOptions{}, executor);
+    TrackingResult tracked;
+    tracked.state = TrackingState::kTracking;  // a camera still in the world
+    for (int i = 0; i < 12; ++i) {
+      RgbdFrame frame = test::PanningFrame(i, false);
+      const int head = standing_up ? 230 - 8 * i : 230;
+      frame.depth(cv::Rect(310, head, 60, 480 - head)).setTo(1.0f);
+      MaskPacket packet = DifferencingOf(i);
+      refinement.Begin(frame);
+      refinement.Refine(frame, &packet);
+      refinement.Observe(frame, tracked, LocalMap());
+      ASSERT_TRUE(packet.people_moving.has_value());
+      ASSERT_EQ(packet.people_moving->size(), 1u);
+      EXPECT_EQ((*packet.people_moving)[0], standing_up || i < 6) << standing_up << " frame " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dynvo
