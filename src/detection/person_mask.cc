@@ -1,7 +1,6 @@
 #include "detection/person_mask.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
