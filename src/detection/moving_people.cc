@@ -71,7 +71,7 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
   for (const Centre& c : person.centres) {
     if (newest.stamp - c.stamp > options_.speed_window_s) continue;
     centres.push_back({c.stamp, c.world});
-    if (c.cut_vertical) cut_vertical = c.cut_vertical;
+    if (c.cut != EdgeCut::kNone) cut_vertical = c.vertical;
     if (c.end && c.cut == newest.cut)
       ends.push_back({c.stamp, *c.end});
     else
@@ -135,7 +135,7 @@ void MovingPeople::Observe(double stamp, const Eigen::Isometry3d& world_from_cam
     Centre centre;
     centre.stamp = stamp;
     centre.world = world_from_camera * *p.pending->centre_in_camera;
-    if (p.pending->cut != EdgeCut::kNone) centre.cut_vertical = world_from_camera.linear().col(1);
+    centre.vertical = world_from_camera.linear().col(1);
     centre.cut = p.pending->cut;
     if (p.pending->end_in_camera) centre.end = world_from_camera * *p.pending->end_in_camera;
     p.centres.push_back(centre);

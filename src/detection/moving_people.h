@@ -64,7 +64,7 @@ class MovingPeople {
   struct Centre {
     double stamp = 0.0;
     Eigen::Vector3d world = Eigen::Vector3d::Zero();
-    std::optional<Eigen::Vector3d> cut_vertical;  // cut by the top or bottom edge: the image's vertical (unit, world)
+    Eigen::Vector3d vertical = Eigen::Vector3d::UnitY();  // the image's vertical (camera y) in the world
     EdgeCut cut = EdgeCut::kNone;
     std::optional<Eigen::Vector3d> end;  // cut by one edge: the end in view, in the world
   };
