@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/command_line_hint.h"
+#include "apps/solver_warnings.h"
 #include "apps/stop_signals.h"
 #include "core/build_info.h"
 #include "core/error.h"
@@ -66,6 +67,7 @@ void PrintConfigKeys(bool markdown) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dynvo::ShowOnlySolverErrors();
   CLI::App app{"dynvo-cli: RGB-D visual odometry for scenes with moving people and objects"};
   app.require_subcommand(1);
   app.set_version_flag("--version", dynvo::VersionLine("dynvo-cli"));
