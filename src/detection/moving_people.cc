@@ -94,6 +94,14 @@ std::optional<double> MovingPeople::Speed(const Person& person) const {
   return velocity->norm();
 }
 
+double MovingPeople::SpeedBar(const Person& person) const {
+  if (static_cast<int>(person.still_speeds.size()) < options_.still_readings) return options_.min_speed_m_s;
+  std::vector<double> readings(person.still_speeds.begin(), person.still_speeds.end());
+  const auto middle = readings.begin() + static_cast<std::ptrdiff_t>(readings.size() / 2);
+  std::nth_element(readings.begin(), middle, readings.end());
+  return std::clamp(options_.still_speed_factor * *middle, options_.min_speed_floor_m_s, options_.min_speed_m_s);
+}
+
 std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
                                       const std::optional<Eigen::Matrix3d>& current_from_previous) {
   for (Person& p : people_) {
@@ -115,11 +123,15 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     // A frame with evidence banks one frame of "moving" (two, as every person spent one above),
     // a frame without spends one: a walker stays moving for hold_frames after stopping, a still
     // person's lone jitter for a frame.
-    if (evidence.difference_share >= options_.min_difference_share || (speed && *speed >= options_.min_speed_m_s))
+    if (evidence.difference_share >= options_.min_difference_share || (speed && *speed >= SpeedBar(p)))
       p.evidence = std::min(p.evidence + 2, options_.hold_frames);
     // Without enough past to measure its speed a person may be walking toward the camera:
     // judged moving until the past shows otherwise, so that no map is seeded on them.
     moving.push_back(p.evidence > 0 || !speed);
+    if (!moving.back()) {
+      p.still_speeds.push_back(*speed);
+      if (static_cast<int>(p.still_speeds.size()) > 2 * options_.still_readings) p.still_speeds.pop_front();
+    }
     if (person == nullptr) added.push_back(fresh);
   }
   people_.erase(std::remove_if(people_.begin(), people_.end(),

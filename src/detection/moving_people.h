@@ -7,7 +7,10 @@
 // second catches people walking straight toward or away from the camera, whom differencing
 // cannot see. Where the image's top or bottom edge cuts a person, the vertical part of their
 // centre's motion is the view's: the speed takes it from the end in view instead (the head of a
-// person the bottom edge cuts), or leaves it out. The verdict has hysteresis by
+// person the bottom edge cuts), or leaves it out. The speed's bar follows the person's own
+// noise: a seated person whose readings while still were steady is moving from a slower speed
+// (3 times their median reading, at least 0.15 m/s) than one whose box and silhouette jitter
+// (at most 0.3 m/s), so that one standing up is seen sooner. The verdict has hysteresis by
 // counting: each frame with that evidence banks a frame of "moving" (up to hold_frames), each
 // frame spends one, so a walker who stops stays moving for a while and a seated person's lone
 // jitter (the box growing for a frame) passes with it. A person whose speed cannot be measured
@@ -26,7 +29,12 @@ namespace dynvo {
 
 struct MovingPeopleOptions {
   double min_difference_share = 0.15;  // moving: the frame difference covers this share of the person ...
-  double min_speed_m_s = 0.3;          // ... or their centre moves this fast in the world
+  double min_speed_m_s = 0.3;          // ... or their centre moves this fast in the world,
+  double still_speed_factor = 3.0;     // ... or, once they have `still_readings` speeds read while still,
+                                       // this many times the median of those (their own noise) ...
+  double min_speed_floor_m_s = 0.15;   // ... but never less than this
+  int still_readings = 15;             // speeds read while still before the bar follows them (the last
+                                       // 2 x this many kept)
   double speed_window_s = 0.3;         // the velocity is fitted to this much of the person's past
                                        // (at least half of it, or the speed is not known)
   int hold_frames = 15;                // at most this many frames of moving banked, one per frame of evidence
@@ -73,11 +81,15 @@ class MovingPeople {
     std::deque<Centre> centres;             // oldest first
     std::optional<PersonEvidence> pending;  // frame t's, in its camera, until Observe
     int evidence = 0;                       // frames of moving banked, <= hold_frames
+    std::deque<double> still_speeds;        // the last speeds read on frames judged still, oldest first
     int missed = 0;
   };
   // The world speed of a person over the window (least squares over its centres), m/s; nullopt
   // without half a window of past.
   std::optional<double> Speed(const Person& person) const;
+  // The speed above which `person` counts as moving: min_speed_m_s, lowered toward
+  // min_speed_floor_m_s for a person whose readings while still were steady.
+  double SpeedBar(const Person& person) const;
   // The person of the last frames continuing `box`, or nullptr.
   Person* Match(const cv::Rect2d& box, std::vector<bool>& taken);
 

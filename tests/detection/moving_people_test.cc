@@ -50,6 +50,33 @@ TEST(MovingPeople, TheDifferenceMakesAPersonMovingAtOnceAndALoneFrameOfItPassesQ
   for (size_t i = 0; i < verdicts.size(); ++i) EXPECT_EQ(verdicts[i], i < 6 || i == 10 || i == 11) << "frame " << i;
 }
 
+TEST(MovingPeople, ASteadySeatedPersonIsMovingFromASlowerSpeedThanAJitteryOne) {
+  // Seated for 2 s, then rising at 0.2 m/s (under the 0.3 m/s bar) while swaying sideways at
+  // 0.5 Hz: by 1 cm (readings while seated at most 0.03 m/s, so their bar is the 0.15 m/s floor)
+  // or by 4 cm (readings around 0.09 m/s: a bar near 0.27 m/s, above the 0.24 m/s at most that
+  // the rise and the sway make together).
+  const auto seated_then_rising = [](double sway_m) {
+    return [sway_m](int i) {
+      const double t = i * kFrame;
+      return Eigen::Vector3d(sway_m * std::sin(3.14159265358979 * t), -0.2 * std::max(0.0, t - 2.0), 2.0);
+    };
+  };
+  const auto never_shared = [](int) { return 0.0; };
+  const auto steady = Verdicts(90, seated_then_rising(0.01), never_shared);
+  const auto jittery = Verdicts(90, seated_then_rising(0.04), never_shared);
+  MovingPeopleOptions fixed_bar;
+  fixed_bar.min_speed_floor_m_s = fixed_bar.min_speed_m_s;
+  const auto steady_fixed_bar = Verdicts(90, seated_then_rising(0.01), never_shared, fixed_bar);
+  for (int i = 6; i < 60; ++i) EXPECT_FALSE(steady[i] || jittery[i]) << "seated, frame " << i;
+  // The velocity fitted to the 10 centres before frame i (0.3 s) reads 0.72 x 0.2 = 0.144 m/s
+  // at frame 67, the sway deciding, and 0.85 x 0.2 = 0.17 m/s at frame 68.
+  for (int i = 60; i < 90; ++i) {
+    if (i == 67) continue;
+    EXPECT_EQ(steady[i], i >= 68) << "rising, frame " << i;
+  }
+  for (int i = 60; i < 90; ++i) EXPECT_FALSE(jittery[i] || steady_fixed_bar[i]) << "rising, frame " << i;
+}
+
 TEST(MovingPeople, AWalkerWhoStopsStaysMovingForTheHold) {
   MovingPeopleOptions options;
   options.hold_frames = 5;
