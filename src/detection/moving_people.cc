@@ -128,7 +128,7 @@ std::vector<bool> MovingPeople::Judge(const std::vector<PersonEvidence>& people,
     // Without enough past to measure its speed a person may be walking toward the camera:
     // judged moving until the past shows otherwise, so that no map is seeded on them.
     moving.push_back(p.evidence > 0 || !speed);
-    if (!moving.back()) {
+    if (!moving.back()) {  // judged still: their speed was read
       p.still_speeds.push_back(*speed);
       if (static_cast<int>(p.still_speeds.size()) > 2 * options_.still_readings) p.still_speeds.pop_front();
     }
