@@ -67,6 +67,7 @@ void CoherentMotionOptions::Check() const {
   RequireOption(min_neighbours >= 2, section, "min_neighbours", ">= 2", min_neighbours);
   RequireOption(min_z > 0.0, section, "min_z", "> 0", min_z);
   RequireOption(min_sigma_px > 0.0, section, "min_sigma_px", "> 0", min_sigma_px);
+  RequireOption(max_point_age_frames >= 0, section, "max_point_age_frames", ">= 0", max_point_age_frames);
 }
 
 std::vector<uint8_t> FlagCoherentMotion(const std::vector<Eigen::Vector2d>& pixels,

@@ -22,6 +22,10 @@ struct CoherentMotionOptions {
   int min_neighbours = 5;        // a smaller neighbourhood (the point included) says nothing (>= 2)
   double min_z = 5.0;            // standard errors the neighbourhood's mean error must depart by (> 0)
   double min_sigma_px = 0.2;     // floor under the frame's robust error scale (pixels, > 0)
+  // Used by the tracker: only map points created at most this many frames ago may be flagged.
+  // An older point's shared departure is more often the drift between the keyframes that
+  // placed it and the current ones than motion (0 = any age, >= 0).
+  int max_point_age_frames = 60;
 
   // Throws InputError naming the key ("tracking.coherent_motion.radius_px ...") when out of range.
   void Check() const;

@@ -408,7 +408,12 @@ void FrameTracker::RejectCoherentMotion(const FrameFeatures& features, const std
     residuals.push_back(pixels[i] - camera_.Project(in_camera));
     depths.push_back(in_camera.z());
   }
-  const std::vector<uint8_t> flags = FlagCoherentMotion(inlier_pixels, residuals, depths, options_.coherent_motion);
+  std::vector<uint8_t> flags = FlagCoherentMotion(inlier_pixels, residuals, depths, options_.coherent_motion);
+  const int max_age = options_.coherent_motion.max_point_age_frames;
+  for (size_t k = 0; k < flags.size() && max_age > 0; ++k) {
+    const int64_t id = visible_ids_[static_cast<size_t>(matches[inlier_indices[k]].point_index)];
+    if (flags[k] && frame_index_ - map_.FindPoint(id)->first_frame > max_age) flags[k] = 0;
+  }
   std::vector<uint8_t> use = estimate.inliers;
   int flagged = 0;
   for (size_t k = 0; k < flags.size(); ++k) {

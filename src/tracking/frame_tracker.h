@@ -180,9 +180,10 @@ class FrameTracker {
   // confirms the points it accepts in the map, replaces `estimate` and counts the rejected ones.
   void ConfirmNewMapPoints(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                            TrackingResult& result);
-  // Applies FlagCoherentMotion to the estimate's inliers: the flagged ones leave the pose (it
-  // is refined again without them; kept only when that succeeds), their map points leave the
-  // map, and their features (in moving_features_) make no new map points.
+  // Applies FlagCoherentMotion to the estimate's inliers: the flagged ones whose map points are
+  // at most coherent_motion.max_point_age_frames old leave the pose (it is refined again
+  // without them; kept only when that succeeds), their map points leave the map, and their
+  // features (in moving_features_) make no new map points.
   void RejectCoherentMotion(const FrameFeatures& features, const std::vector<Match>& matches, PoseEstimate& estimate,
                             TrackingResult& result);
   // True when the camera turns faster than lines_max_rotation_deg_s from the last frame to

@@ -565,6 +565,25 @@ TEST(FrameTracker, CoherentMotionKeepsASwayingBoxOutOfThePose) {
   EXPECT_LT(Rms(still.t_errors), 1.05 * Rms(still_off.t_errors));
 }
 
+TEST(FrameTracker, CoherentMotionLeavesOldMapPointsToThePose) {
+  // The swaying box of the test above, still for its first 3 s, then shifting 3 mm a frame
+  // (0.5 px): its points were mapped 90 frames before it moves.
+  TrackerOptions any_age;
+  any_age.new_point_confirmations = 2;
+  any_age.coherent_motion.enabled = true;
+  any_age.coherent_motion.max_point_age_frames = 0;
+  TrackerOptions young_only = any_age;
+  young_only.coherent_motion.max_point_age_frames = 60;
+  const test::SyntheticWorld box = test::MakeWorld(60, {-0.3, -0.6, 3.4}, {0.3, 0.6, 3.6}, 23);
+  const auto shift = [](int i) { return i < 90 ? 0.0 : 0.003 * (i - 90); };
+  const WallRun any = TrackWallWithBox(box, shift, 0, 110, 600, 10, any_age);
+  const WallRun young = TrackWallWithBox(box, shift, 0, 110, 600, 10, young_only);
+  std::cout << "[ coherent ] box moving after 3 s: rejected " << any.coherent_rejected << " at any age, "
+            << young.coherent_rejected << " among points at most 60 frames old\n";
+  EXPECT_GT(any.coherent_rejected, 10);
+  EXPECT_LT(young.coherent_rejected, any.coherent_rejected / 2);
+}
+
 TEST(FrameTracker, ReseedsTheMapAfterRepeatedFailures) {
   const test::SyntheticWorld world = RoomWorld();
   std::mt19937 rng(6);
