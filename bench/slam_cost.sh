@@ -19,7 +19,8 @@ cmake --build "$build" -j "$(nproc)" --target dynvo-cli dynvo-synth ate >/dev/nu
 bin="$build/bin"
 mkdir -p "$work" "$root/bench/results"
 seq="$work/synth_tum_walking_loop_s7_$frames"
-[ -f "$seq/rgb.txt" ] || "$bin/dynvo-synth" --scenario tum_walking --camera-path loop --frames "$frames" --seed 7 \
+# (generated again when its camera.json predates the rolling shutter's readout in it)
+{ [ -f "$seq/rgb.txt" ] && grep -q rolling_shutter_readout_s "$seq/camera.json"; } || "$bin/dynvo-synth" --scenario tum_walking --camera-path loop --frames "$frames" --seed 7 \
   --out "$seq" --force >&2
 
 for run in $(seq "$runs"); do

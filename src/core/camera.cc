@@ -31,6 +31,8 @@ bool Camera::InImage(const Eigen::Vector2d& px, double margin) const {
 void Camera::Check(const std::string& where) const {
   if (width <= 0 || height <= 0) throw InputError(where + ": camera width and height must be positive");
   if (!(fx > 0) || !(fy > 0)) throw InputError(where + ": camera fx and fy must be positive");
+  if (!(rolling_shutter_readout_s >= 0.0 && rolling_shutter_readout_s < 1.0))
+    throw InputError(where + ": camera rolling-shutter readout must be in [0, 1) s");
 }
 
 }  // namespace dynvo

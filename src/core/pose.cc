@@ -51,6 +51,12 @@ Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d&
   return pose;
 }
 
+Eigen::Vector3d AngularVelocity(const Pose& before, const Pose& after, double seconds) {
+  if (!(seconds > 0.0)) return Eigen::Vector3d::Zero();
+  const Eigen::AngleAxisd turn(before.linear().transpose() * after.linear());
+  return turn.axis() * (turn.angle() / seconds);
+}
+
 Pose InterpolatePose(const Pose& a, const Pose& b, double fraction) {
   const Pose step = a.inverse() * b;
   const Eigen::AngleAxisd rotation(step.linear());

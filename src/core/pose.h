@@ -32,4 +32,9 @@ Pose PoseFromAxisAngle(const Eigen::Vector3d& axis_angle, const Eigen::Vector3d&
 // rotation scaled along its axis and its translation linearly. a at 0, b at 1.
 Pose InterpolatePose(const Pose& a, const Pose& b, double fraction);
 
+// The angular velocity (rad/s, axis times speed, in the camera's own frame) of a camera posed
+// at `before` and, `seconds` later, at `after`: the turn between them over the time. Zero when
+// `seconds` is not positive.
+Eigen::Vector3d AngularVelocity(const Pose& before, const Pose& after, double seconds);
+
 }  // namespace dynvo

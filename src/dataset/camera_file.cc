@@ -39,14 +39,16 @@ CameraFile ReadCameraFile(const std::string& path) { return ParseCameraFile(Read
 CameraFile ParseCameraFile(const std::string& text, const std::string& path) {
   const json root = ParseJsonStrictly(text, path);
   if (!root.is_object()) ThrowFileError(path, 0, "expected a JSON object");
-  static const char* const kKeys[] = {"width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor"};
+  static const char* const kKeys[] = {
+      "width", "height", "fx", "fy", "cx", "cy", "distortion", "depth_factor", "rolling_shutter_readout_s"};
   for (const auto& item : root.items()) {
     bool known = false;
     for (const char* key : kKeys) known = known || item.key() == key;
     if (!known)
       ThrowFileError(
           path, 0,
-          "unknown key '" + item.key() + "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor)");
+          "unknown key '" + item.key() +
+              "' (expected width, height, fx, fy, cx, cy, distortion, depth_factor, rolling_shutter_readout_s)");
   }
 
   CameraFile file;
@@ -68,6 +70,13 @@ CameraFile ParseCameraFile(const std::string& text, const std::string& path) {
       ThrowFileError(path, 0, "key 'distortion' must be 5 finite numbers [k1, k2, p1, p2, k3], got " + JsonText(d));
   }
   if (root.contains("depth_factor")) file.depth_factor = Number(root, "depth_factor", path, true);
+  if (root.contains("rolling_shutter_readout_s")) {
+    camera.rolling_shutter_readout_s = Number(root, "rolling_shutter_readout_s", path, false);
+    if (!(camera.rolling_shutter_readout_s >= 0.0 && camera.rolling_shutter_readout_s < 1.0))
+      ThrowFileError(path, 0,
+                     "key 'rolling_shutter_readout_s' must be in [0, 1) seconds, got " +
+                         JsonText(root.at("rolling_shutter_readout_s")));
+  }
   return file;
 }
 
@@ -80,6 +89,7 @@ void WriteCameraFile(const std::string& path, const Camera& camera, std::optiona
                {"cy", camera.cy},
                {"distortion", camera.distortion}};
   if (depth_factor) root["depth_factor"] = *depth_factor;
+  if (camera.rolling_shutter_readout_s > 0.0) root["rolling_shutter_readout_s"] = camera.rolling_shutter_readout_s;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) ThrowFileError(path, 0, "cannot write file");
   out << root.dump(2) << "\n";

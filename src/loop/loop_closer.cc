@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "loop/global_bundle_adjustment.h"
+#include "loop/keyframe_at_stamp.h"
 
 namespace dynvo {
 
@@ -53,6 +54,7 @@ void LoopCloser::Observe(const LoopFrame& frame) {
     // Its lines are described by the search (on the executor), before it reads them.
     auto made = std::make_shared<LoopKeyframe>(std::move(keyframe));
     keyframes_.push_back(made);
+    keyframe_entries_.push_back(frames_.size());
     std::optional<FrameLines> lines;
     if (frame.lines != nullptr) lines = *frame.lines;
     // Each search (and map sample) waits for the one before: the database sees the keyframes in
@@ -102,8 +104,8 @@ LoopClosingResult LoopCloser::Finish() {
   if (result.pose_graph.ok && options_.bundle_adjustment.enabled) {
     const auto start = SteadyClock::now();
     GlobalBundleAdjustmentResult refined =
-        RefineKeyframes(keyframes_, result.keyframe_poses, result.candidates, camera_, options_.bundle_adjustment,
-                        static_cast<size_t>(options_.max_points_per_loop));
+        RefineKeyframes(KeyframesAtTheirStamps(), result.keyframe_poses, result.candidates, camera_,
+                        options_.bundle_adjustment, static_cast<size_t>(options_.max_points_per_loop));
     result.bundle_adjustment = refined.report;
     result.keyframe_poses = std::move(refined.world_from_camera);
     result.bundle_adjustment_ms = MillisecondsSince(start);
@@ -114,6 +116,20 @@ LoopClosingResult LoopCloser::Finish() {
     result.frame_poses.push_back(CorrectedPose(f, result.keyframe_poses));
   }
   return result;
+}
+
+std::vector<std::shared_ptr<const LoopKeyframe>> LoopCloser::KeyframesAtTheirStamps() const {
+  if (!(camera_.rolling_shutter_readout_s > 0.0)) return keyframes_;
+  std::vector<std::shared_ptr<const LoopKeyframe>> at_stamps;
+  for (size_t k = 0; k < keyframes_.size(); ++k) {
+    const size_t entry = keyframe_entries_[k];
+    const FrameEntry& before = frames_[entry > 0 ? entry - 1 : entry];
+    const FrameEntry& after = frames_[std::min(entry + 1, frames_.size() - 1)];
+    const Eigen::Vector3d turning =
+        AngularVelocity(before.world_from_camera, after.world_from_camera, after.stamp - before.stamp);
+    at_stamps.push_back(std::make_shared<const LoopKeyframe>(KeyframeAtStamp(*keyframes_[k], turning, camera_)));
+  }
+  return at_stamps;
 }
 
 Pose LoopCloser::CorrectedPose(const FrameEntry& frame, const std::vector<Pose>& keyframe_poses) const {

@@ -2,8 +2,8 @@
 // The loop closer (slam mode): keyframes go to place recognition on the executor, one after
 // the other, beside tracking, which never waits for it; a keyframe whose search accepts a loop
 // closes the pose graph of the keyframes so far on the same task (loop/loop_correction.h). At
-// the end a full BA refines the corrected keyframes, and every frame follows the keyframes it
-// was tracked between.
+// the end a full BA refines the corrected keyframes (seen at their stamps when the camera has a
+// rolling shutter), and every frame follows the keyframes it was tracked between.
 
 #include <cstddef>
 #include <memory>
@@ -120,12 +120,17 @@ class LoopCloser {
   // between the two, applied to its online pose. After the last keyframe a frame follows it
   // rigidly; before the first it keeps its online pose.
   Pose CorrectedPose(const FrameEntry& frame, const std::vector<Pose>& keyframe_poses) const;
+  // The keyframes as the full BA takes them: with a rolling-shutter camera, each as seen at its
+  // stamp (loop/keyframe_at_stamp.h), turning as tracking saw it turn from the frame before to
+  // the frame after; else as they are.
+  std::vector<std::shared_ptr<const LoopKeyframe>> KeyframesAtTheirStamps() const;
 
   Camera camera_;
   LoopClosingOptions options_;
   Executor& executor_;
   std::vector<FrameEntry> frames_;
   std::vector<std::shared_ptr<const LoopKeyframe>> keyframes_;
+  std::vector<size_t> keyframe_entries_;  // each keyframe's place in frames_
   // Owned by the searches once started: each search waits for the one before.
   std::shared_ptr<PlaceRecognition> recognition_;
   std::shared_ptr<std::vector<LoopCandidate>> candidates_;

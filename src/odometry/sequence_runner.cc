@@ -72,8 +72,14 @@ nlohmann::json Summary(std::vector<double> values) {
 }
 
 nlohmann::json CameraJson(const Camera& c) {
-  return {{"width", c.width}, {"height", c.height},        {"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx},
-          {"cy", c.cy},       {"distortion", c.distortion}};
+  return {{"width", c.width},
+          {"height", c.height},
+          {"fx", c.fx},
+          {"fy", c.fy},
+          {"cx", c.cx},
+          {"cy", c.cy},
+          {"distortion", c.distortion},
+          {"rolling_shutter_readout_s", c.rolling_shutter_readout_s}};
 }
 
 // Collects per-frame figures for run.json.

@@ -4,11 +4,6 @@
 
 namespace dynvo {
 
-double RowExposureOffset(double row, int height, double readout_s) {
-  if (height < 2) return 0.0;
-  return readout_s * (row / (height - 1) - 0.5);
-}
-
 std::vector<ShutterBand> RollingShutterBands(int height, double readout_s, int bands) {
   bands = std::clamp(bands, 1, std::max(1, height));
   std::vector<ShutterBand> out;

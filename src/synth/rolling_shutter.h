@@ -1,22 +1,17 @@
 #pragma once
-// Rolling shutter: a CMOS sensor (the Kinect v1's colour and IR cameras) reads its rows out one
-// after another, so under motion each row shows the scene at its own time. Row r of an image
-// of H rows stamped t is exposed at t + readout * (r / (H - 1) - 0.5): the middle row at the
-// stamp. Rendered in horizontal bands, each at its centre row's time, so the cost stays close
-// to one full render per image.
+// A rolling shutter rendered (core/rolling_shutter.h: row r of an image stamped t is exposed at
+// t + RowExposureOffset): in horizontal bands, each at its centre row's time, so the cost stays
+// close to one full render per image.
 
 #include <functional>
 #include <vector>
 
 #include "core/pose.h"
+#include "core/rolling_shutter.h"
 #include "synth/renderer.h"
 #include "synth/scene.h"
 
 namespace dynvo {
-
-// Seconds from the image stamp at which (fractional) row `row` of `height` rows is exposed
-// when the rows are read out over `readout_s`; 0 for the middle row or a readout of 0.
-double RowExposureOffset(double row, int height, double readout_s);
 
 // One horizontal band of an image, rendered at one time.
 struct ShutterBand {

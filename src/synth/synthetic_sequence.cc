@@ -235,7 +235,9 @@ SyntheticSequenceSummary WriteSyntheticSequence(const SyntheticSequenceOptions& 
     });
   }
   if (pending.valid()) pending.Get();
-  writer.Finish(world.Groundtruth(), options.camera, options.noise.depth_factor);
+  Camera written = options.camera;  // camera.json tells readers the readout its frames have
+  written.rolling_shutter_readout_s = options.rolling_shutter_readout_s;
+  writer.Finish(world.Groundtruth(), written, options.noise.depth_factor);
   labels.Write(folder);
   summary.frames = world.size();
   summary.mean_dynamic_ratio = ratio_sum / world.size();

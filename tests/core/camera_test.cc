@@ -50,6 +50,11 @@ TEST(Camera, CheckRejectsNonPositiveValues) {
   cam.fx = 500;
   cam.width = -1;
   EXPECT_THROW(cam.Check("config camera"), InputError);
+  cam.width = 640;
+  cam.rolling_shutter_readout_s = -0.001;
+  EXPECT_THROW(cam.Check("config camera"), InputError);
+  cam.rolling_shutter_readout_s = 0.028;
+  EXPECT_NO_THROW(cam.Check("config camera"));
 }
 
 }  // namespace

@@ -44,6 +44,15 @@ TEST(Pose, InterpolationGoesFromOneEndToTheOtherAlongTheStep) {
   EXPECT_NEAR(RotationAngle(Pose(a.inverse() * quarter)), 0.1, 1e-12);
 }
 
+TEST(Pose, AngularVelocityIsTheTurnOverTheTimeInTheCamerasFrame) {
+  const Pose before = PoseFromAxisAngle({0.3, -0.2, 0.1}, {1.0, 0.0, 2.0});
+  const Eigen::Vector3d turn(0.02, -0.05, 0.01);  // radians, in the camera's frame
+  const Pose after = before * PoseFromAxisAngle(turn, {0.1, 0.2, 0.0});
+  EXPECT_TRUE(AngularVelocity(before, after, 0.5).isApprox(turn / 0.5, 1e-12));
+  EXPECT_TRUE(AngularVelocity(before, after, 0.0).isZero(0.0));
+  EXPECT_TRUE(AngularVelocity(before, before, 0.5).isZero(1e-15));
+}
+
 TEST(Error, FileMessageNamesFileAndLine) {
   EXPECT_EQ(FileMessage("a/rgb.txt", 7, "bad"), "a/rgb.txt:7: bad");
   EXPECT_EQ(FileMessage("a/rgb.txt", 0, "missing"), "a/rgb.txt: missing");

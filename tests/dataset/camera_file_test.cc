@@ -26,7 +26,8 @@ TEST(CameraFile, ReadsAllKeys) {
   test::TempDir dir;
   const std::string path = dir.Write("camera.json",
                                      R"({"width": 320, "height": 240, "fx": 300.5, "fy": 301, "cx": 160.25, "cy": 120,
-          "distortion": [0.1, -0.2, 0.001, -0.002, 0.05], "depth_factor": 1000})");
+          "distortion": [0.1, -0.2, 0.001, -0.002, 0.05], "depth_factor": 1000,
+          "rolling_shutter_readout_s": 0.028})");
   const CameraFile file = ReadCameraFile(path);
   EXPECT_EQ(file.camera.width, 320);
   EXPECT_EQ(file.camera.height, 240);
@@ -37,6 +38,7 @@ TEST(CameraFile, ReadsAllKeys) {
   EXPECT_EQ(file.camera.distortion, (std::array<double, 5>{0.1, -0.2, 0.001, -0.002, 0.05}));
   ASSERT_TRUE(file.depth_factor.has_value());
   EXPECT_EQ(*file.depth_factor, 1000.0);
+  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.028);
 }
 
 TEST(CameraFile, OptionalKeysDefault) {
@@ -46,6 +48,7 @@ TEST(CameraFile, OptionalKeysDefault) {
   const CameraFile file = ReadCameraFile(path);
   EXPECT_FALSE(file.camera.HasDistortion());
   EXPECT_FALSE(file.depth_factor.has_value());
+  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.0);  // a global shutter
 }
 
 TEST(CameraFile, WriteReadRoundTrip) {
@@ -65,8 +68,12 @@ TEST(CameraFile, WriteReadRoundTrip) {
   EXPECT_EQ(file.camera.cy, camera.cy);
   EXPECT_EQ(file.camera.distortion, camera.distortion);
   EXPECT_EQ(file.depth_factor, std::optional<double>(5000.0));
+  EXPECT_EQ(file.camera.rolling_shutter_readout_s, 0.0);
   WriteCameraFile(path, camera);
   EXPECT_FALSE(ReadCameraFile(path).depth_factor.has_value());
+  camera.rolling_shutter_readout_s = 0.028;
+  WriteCameraFile(path, camera);
+  EXPECT_EQ(ReadCameraFile(path).camera.rolling_shutter_readout_s, 0.028);
 }
 
 TEST(CameraFile, ErrorsNameFileAndKey) {
@@ -81,6 +88,12 @@ TEST(CameraFile, ErrorsNameFileAndKey) {
   EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"distortion":[1,2,3]})").find("key 'distortion'"),
             std::string::npos);
   EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"depth_factor":0})").find("key 'depth_factor'"),
+            std::string::npos);
+  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"rolling_shutter_readout_s":-0.01})")
+                .find("key 'rolling_shutter_readout_s' must be in [0, 1) seconds"),
+            std::string::npos);
+  EXPECT_NE(CameraFileError("{" + base + R"(,"cy":240,"rolling_shutter_readout_s":"28 ms"})")
+                .find("key 'rolling_shutter_readout_s'"),
             std::string::npos);
   EXPECT_NE(CameraFileError("{" + base).find("not valid JSON"), std::string::npos);
   EXPECT_NE(CameraFileError("[1, 2]").find("expected a JSON object"), std::string::npos);

@@ -106,6 +106,7 @@ TEST(SyntheticSequence, OutputLoadsThroughTheReaderAndGroundtruthMatchesTheRende
   EXPECT_EQ(dataset.camera().fx, o.camera.fx);
   EXPECT_EQ(dataset.camera().cy, o.camera.cy);
   EXPECT_EQ(dataset.camera().width, 160);
+  EXPECT_EQ(dataset.camera().rolling_shutter_readout_s, 0.0);  // a global shutter
   EXPECT_TRUE(dataset.has_masks());
   const SyntheticWorld world(o);
   for (size_t i = 0; i < dataset.size(); i += 5) {
@@ -211,6 +212,17 @@ TEST(SyntheticSequence, ChecksTheRollingShutterReadoutAndBands) {
   }
   o.rolling_shutter_bands = 120;
   EXPECT_NO_THROW(o.Check());
+}
+
+TEST(SyntheticSequence, CameraJsonStatesTheRollingShuttersReadout) {
+  test::TempDir dir;
+  const std::string folder = (dir.path() / "seq").string();
+  SyntheticSequenceOptions o = SmallOptions(Scenario::kNone);
+  o.frames = 2;
+  o.rolling_shutter_readout_s = 0.028;
+  PrepareOutputFolder(folder, false);
+  WriteSyntheticSequence(o, folder);
+  EXPECT_EQ(TumDataset(folder).camera().rolling_shutter_readout_s, 0.028);
 }
 
 TEST(SyntheticSequence, RefusesToOverwriteANonEmptyFolderWithoutForce) {

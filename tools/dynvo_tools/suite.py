@@ -88,8 +88,9 @@ SOURCES = (
 )
 
 
-# What the generators write, beyond their arguments: 2 = masks/ gives a person not moving 128.
-GENERATED_FORMAT = 2
+# What the generators write, beyond their arguments: 2 = masks/ gives a person not moving 128;
+# 3 = camera.json states the rolling shutter's readout.
+GENERATED_FORMAT = 3
 
 
 @dataclass(frozen=True)
