@@ -2,9 +2,9 @@
 // A keyframe as a camera exposing every row at the image's stamp would have seen it. A
 // rolling-shutter camera (core/rolling_shutter.h) that turns sees each row from its own pose,
 // so tracking's one pose per image is off by a turn that shears the image; over a loop the
-// shear adds up to drift no closure can see (dev's loop rows: about two thirds of the
-// trajectory's error left after closing). Turned back to the stamp, the keyframes' observations
-// let the full BA place them where the scene says.
+// shear adds up to drift no closure can see (on the generated loops, most of the error left
+// after closing: docs/findings.md). Turned back to the stamp, the keyframes' observations let
+// the full BA place them where the scene says.
 
 #include <Eigen/Core>
 
