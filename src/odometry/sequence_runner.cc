@@ -72,14 +72,10 @@ nlohmann::json Summary(std::vector<double> values) {
 }
 
 nlohmann::json CameraJson(const Camera& c) {
-  return {{"width", c.width},
-          {"height", c.height},
-          {"fx", c.fx},
-          {"fy", c.fy},
-          {"cx", c.cx},
-          {"cy", c.cy},
-          {"distortion", c.distortion},
-          {"rolling_shutter_readout_s", c.rolling_shutter_readout_s}};
+  nlohmann::json camera = {{"width", c.width}, {"height", c.height},        {"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx},
+                           {"cy", c.cy},       {"distortion", c.distortion}};
+  camera["rolling_shutter_readout_s"] = c.rolling_shutter_readout_s;
+  return camera;
 }
 
 // Collects per-frame figures for run.json.
