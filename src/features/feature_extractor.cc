@@ -47,6 +47,34 @@ bool Excluded(const cv::Mat& exclude, const cv::Point2f& pt, double scale) {
   return exclude.at<uint8_t>(ey, ex) != 0;
 }
 
+// Where a level image differs from the one an earlier extraction described: a keypoint whose
+// orientation patch, rotated descriptor pattern and the blur under it (within kPatchReach
+// pixels) see no changed pixel has the earlier angle and descriptor.
+class UnchangedPatches {
+ public:
+  // `earlier` empty: nothing is unchanged. Else the same size and type as `image`.
+  UnchangedPatches(const cv::Mat& earlier, const cv::Mat& image) {
+    if (earlier.empty() || earlier.size() != image.size() || earlier.type() != image.type()) return;
+    cv::Mat changed;
+    cv::compare(earlier, image, changed, cv::CMP_NE);
+    cv::integral(changed, changed_sum_, CV_32S);
+  }
+  bool Around(const cv::Point2f& pt) const {
+    if (changed_sum_.empty()) return false;
+    const int x0 = std::max(0, cvRound(pt.x) - kPatchReach), y0 = std::max(0, cvRound(pt.y) - kPatchReach);
+    const int x1 = std::min(changed_sum_.cols - 1, cvRound(pt.x) + kPatchReach + 1);
+    const int y1 = std::min(changed_sum_.rows - 1, cvRound(pt.y) + kPatchReach + 1);
+    const int changed = changed_sum_.at<int>(y1, x1) - changed_sum_.at<int>(y0, x1) - changed_sum_.at<int>(y1, x0) +
+                        changed_sum_.at<int>(y0, x0);
+    return changed == 0;
+  }
+
+ private:
+  // The rotated 31-pixel pattern reaches 22 pixels, the 7x7 blur 3 more; one of slack.
+  static constexpr int kPatchReach = 26;
+  cv::Mat changed_sum_;  // integral image of the changed pixels (255 each)
+};
+
 bool DepthValid(float d, const FeatureOptions& options) {
   return std::isfinite(d) && d >= options.min_depth_m && d <= options.max_depth_m && d > 0.0f;
 }
@@ -153,48 +181,93 @@ void FeatureExtractor::DetectLevel(int l, const cv::Mat& exclude, std::vector<cv
   }
 }
 
-void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates,
-                                     std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors) const {
-  if (!LevelUsable(l)) return;
+std::vector<int> FeatureExtractor::ChooseOnLevel(int l, const std::vector<cv::KeyPoint>& candidates) const {
   const cv::Mat& image = pyramid_[l];
   const int wanted = features_per_level_[l];
-  const double scale = scales_[l];
   const cv::Rect2f region(static_cast<float>(kEdge), static_cast<float>(kEdge),
                           static_cast<float>(image.cols - 2 * kEdge), static_cast<float>(image.rows - 2 * kEdge));
-  std::vector<int> chosen;
   switch (options_.distribution) {
     case FeatureDistribution::kQuadtree:
-      chosen = DistributeQuadtree(candidates, region, wanted);
-      break;
+      return DistributeQuadtree(candidates, region, wanted);
     case FeatureDistribution::kGrid:
-      chosen = DistributeGrid(candidates, region, wanted);
-      break;
+      return DistributeGrid(candidates, region, wanted);
     case FeatureDistribution::kNone:
-      chosen = StrongestKeypoints(candidates, wanted);
       break;
   }
-  if (chosen.empty()) return;
+  return StrongestKeypoints(candidates, wanted);
+}
 
+void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates, const DescribedLevel* earlier,
+                                     const std::vector<int>* earlier_index, std::vector<cv::KeyPoint>* keypoints,
+                                     cv::Mat* descriptors, DescribedLevel* record) const {
+  if (!LevelUsable(l)) return;
+  const std::vector<int> chosen = ChooseOnLevel(l, candidates);
+  if (chosen.empty()) return;
+  const cv::Mat& image = pyramid_[l];
+  const UnchangedPatches unchanged(earlier != nullptr ? earlier->image : cv::Mat(), image);
   std::vector<cv::KeyPoint>& level_keypoints = *keypoints;
   level_keypoints.clear();
   level_keypoints.reserve(chosen.size());
+  descriptors->create(static_cast<int>(chosen.size()), 32, CV_8UC1);
+  std::vector<int> fresh;  // the keypoints described here
   for (int i : chosen) {
     cv::KeyPoint k = candidates[i];
-    k.angle = CentroidAngle(image, k.pt, umax_);
     k.octave = 0;
     k.size = static_cast<float>(kPatchSize);
+    const int row = earlier != nullptr && !earlier->row.empty() ? earlier->row[(*earlier_index)[i]] : -1;
+    if (row >= 0 && unchanged.Around(k.pt)) {
+      k.angle = earlier->angles[row];
+      earlier->descriptors.row(row).copyTo(descriptors->row(static_cast<int>(level_keypoints.size())));
+    } else {
+      k.angle = CentroidAngle(image, k.pt, umax_);
+      fresh.push_back(static_cast<int>(level_keypoints.size()));
+    }
     level_keypoints.push_back(k);
   }
-  const size_t count = level_keypoints.size();
-  orbs_[l]->compute(image, level_keypoints, *descriptors);
-  if (level_keypoints.size() != count)
-    throw std::logic_error("FeatureExtractor: ORB dropped keypoints inside the border");
+  ComputeDescriptors(l, level_keypoints, fresh, descriptors);
+  if (record != nullptr) {
+    record->image = image;
+    record->row.assign(candidates.size(), -1);
+    record->angles.clear();
+    for (size_t r = 0; r < chosen.size(); ++r) {
+      record->row[chosen[r]] = static_cast<int>(r);
+      record->angles.push_back(level_keypoints[r].angle);
+    }
+    record->descriptors = *descriptors;
+  }
+  const double scale = scales_[l];
   for (cv::KeyPoint& k : level_keypoints) {
     k.pt.x = static_cast<float>(k.pt.x * scale);
     k.pt.y = static_cast<float>(k.pt.y * scale);
     k.octave = l;
     k.size = static_cast<float>(kPatchSize * scale);
   }
+}
+
+void FeatureExtractor::ComputeDescriptors(int l, const std::vector<cv::KeyPoint>& keypoints,
+                                          const std::vector<int>& fresh, cv::Mat* descriptors) const {
+  if (fresh.empty()) return;
+  const cv::Mat& image = pyramid_[l];
+  // The part of the level around them, kEdge + 1 beyond the outermost (ORB drops keypoints
+  // within its edge threshold of the image it is given); it reads the pixels beyond that part
+  // from the whole level, so the descriptors are those of the whole level.
+  cv::Rect box(cv::Point(cvRound(keypoints[fresh[0]].pt.x), cvRound(keypoints[fresh[0]].pt.y)), cv::Size(1, 1));
+  for (int i : fresh) box |= cv::Rect(cvRound(keypoints[i].pt.x), cvRound(keypoints[i].pt.y), 1, 1);
+  const int margin = kEdge + 1;
+  box = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
+        cv::Rect(0, 0, image.cols, image.rows);
+  std::vector<cv::KeyPoint> in_box;
+  in_box.reserve(fresh.size());
+  for (int i : fresh) {
+    cv::KeyPoint k = keypoints[i];
+    k.pt -= cv::Point2f(static_cast<float>(box.x), static_cast<float>(box.y));
+    in_box.push_back(k);
+  }
+  cv::Mat computed;
+  orbs_[l]->compute(image(box), in_box, computed);
+  if (in_box.size() != fresh.size())
+    throw std::logic_error("FeatureExtractor: ORB dropped keypoints inside the border");
+  for (size_t j = 0; j < fresh.size(); ++j) computed.row(static_cast<int>(j)).copyTo(descriptors->row(fresh[j]));
 }
 
 void FeatureExtractor::BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude) {
@@ -209,6 +282,7 @@ void FeatureExtractor::BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, c
   pyramid_[0] = gray;
   for (int l = 1; l < levels; ++l) {
     const cv::Size size(cvRound(gray.cols / scales_[l]), cvRound(gray.rows / scales_[l]));
+    pyramid_[l].release();  // a new buffer: an extraction's DescribedLevel may still hold the old one
     cv::resize(pyramid_[l - 1], pyramid_[l], size, 0, 0, cv::INTER_LINEAR);
   }
 }
@@ -230,13 +304,16 @@ FrameFeatures FeatureExtractor::Extract(const cv::Mat& gray, const cv::Mat& dept
   const int levels = options_.num_levels;
   std::vector<std::vector<cv::KeyPoint>> level_candidates(levels), level_keypoints(levels);
   std::vector<cv::Mat> level_descriptors(levels);
+  std::vector<DescribedLevel> described(corners != nullptr ? levels : 0);
   ForEachLevel([&](int l) {
     DetectLevel(l, exclude, &level_candidates[l]);
-    DescribeLevel(l, level_candidates[l], &level_keypoints[l], &level_descriptors[l]);
+    DescribeLevel(l, level_candidates[l], nullptr, nullptr, &level_keypoints[l], &level_descriptors[l],
+                  corners != nullptr ? &described[l] : nullptr);
   });
   if (corners) {
     corners->image_size = gray.size();
     corners->levels = std::move(level_candidates);
+    corners->described = std::move(described);
   }
   return Assemble(level_keypoints, level_descriptors, depth, camera);
 }
@@ -249,12 +326,19 @@ FrameFeatures FeatureExtractor::ExtractFromCorners(const DetectedCorners& corner
   const int levels = options_.num_levels;
   std::vector<std::vector<cv::KeyPoint>> level_keypoints(levels);
   std::vector<cv::Mat> level_descriptors(levels);
+  const bool reuse = corners.described.size() == corners.levels.size();
   ForEachLevel([&](int l) {
     std::vector<cv::KeyPoint> kept;
+    std::vector<int> kept_index;  // each kept corner's index among the level's corners
     kept.reserve(corners.levels[l].size());
-    for (const cv::KeyPoint& k : corners.levels[l])
-      if (!Excluded(exclude, k.pt, scales_[l])) kept.push_back(k);
-    DescribeLevel(l, kept, &level_keypoints[l], &level_descriptors[l]);
+    kept_index.reserve(corners.levels[l].size());
+    for (size_t i = 0; i < corners.levels[l].size(); ++i) {
+      if (Excluded(exclude, corners.levels[l][i].pt, scales_[l])) continue;
+      kept.push_back(corners.levels[l][i]);
+      kept_index.push_back(static_cast<int>(i));
+    }
+    DescribeLevel(l, kept, reuse ? &corners.described[l] : nullptr, &kept_index, &level_keypoints[l],
+                  &level_descriptors[l], nullptr);
   });
   return Assemble(level_keypoints, level_descriptors, depth, camera);
 }

@@ -13,11 +13,21 @@
 
 namespace dynvo {
 
+// What one extraction described on one pyramid level: ExtractFromCorners takes a keypoint's
+// angle and descriptor from here where the image it describes equals this one around it.
+struct DescribedLevel {
+  cv::Mat image;              // the level's grey image (never written into afterwards)
+  std::vector<int> row;       // per detected corner of the level: its row below; -1 = not chosen
+  std::vector<float> angles;  // per row: the keypoint's angle (degrees)
+  cv::Mat descriptors;        // one row per chosen corner
+};
+
 // The corners one extraction detected, per pyramid level, before they were spread and
 // described: what FeatureExtractor::ExtractFromCorners chooses from again.
 struct DetectedCorners {
   cv::Size image_size;                            // of the image they were detected on
   std::vector<std::vector<cv::KeyPoint>> levels;  // per level, level pixel coordinates
+  std::vector<DescribedLevel> described;          // per level; empty = nothing to reuse
 
   bool empty() const { return levels.empty(); }
 };
@@ -47,8 +57,10 @@ class FeatureExtractor {
   // image they were detected on, or one that differs from it only where the caller knows, e.g.
   // filled from the background). No detection pass: corners Extract would have found by
   // retrying cells whose corners are all excluded are not found. With corners of the same image
-  // and an empty `exclude`, equals Extract. Throws InputError on wrong types or sizes, or when
-  // `corners` were detected at another image size or pyramid depth.
+  // and an empty `exclude`, equals Extract. A keypoint Extract described, whose patch and blur
+  // see the same pixels in `gray` as in the image Extract described, keeps its angle and
+  // descriptor (the same values, not computed again). Throws InputError on wrong types or sizes,
+  // or when `corners` were detected at another image size or pyramid depth.
   FrameFeatures ExtractFromCorners(const DetectedCorners& corners, const cv::Mat& gray, const cv::Mat& depth,
                                    const Camera& camera, const cv::Mat& exclude = cv::Mat());
 
@@ -59,9 +71,19 @@ class FeatureExtractor {
   bool LevelUsable(int l) const;
   // Corners of pyramid level `l` off `exclude` (level coordinates, unspread).
   void DetectLevel(int l, const cv::Mat& exclude, std::vector<cv::KeyPoint>* candidates) const;
+  // Indices into `candidates` of level `l`'s share of the features, by options_.distribution.
+  std::vector<int> ChooseOnLevel(int l, const std::vector<cv::KeyPoint>& candidates) const;
   // Keypoints (level-0 coordinates) and descriptors of pyramid level `l` from its candidates.
-  void DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates, std::vector<cv::KeyPoint>* keypoints,
-                     cv::Mat* descriptors) const;
+  // With `earlier` (and `earlier_index`: each candidate's index among its corners), angles and
+  // descriptors are taken from it where the level's pixels around the keypoint are unchanged.
+  // With `record`, what was described is kept there.
+  void DescribeLevel(int l, const std::vector<cv::KeyPoint>& candidates, const DescribedLevel* earlier,
+                     const std::vector<int>* earlier_index, std::vector<cv::KeyPoint>* keypoints, cv::Mat* descriptors,
+                     DescribedLevel* record) const;
+  // Descriptors of `keypoints[i]` (level coordinates, angles set) for each i of `fresh`, into
+  // `descriptors` row i: cv::ORB::compute on the part of level `l` around them.
+  void ComputeDescriptors(int l, const std::vector<cv::KeyPoint>& keypoints, const std::vector<int>& fresh,
+                          cv::Mat* descriptors) const;
   // The pyramid of `gray` into pyramid_ (after checking the inputs).
   void BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude);
   // Runs `per_level(l)` for every level (on levels_executor_ when given).

@@ -74,7 +74,8 @@ void BindConfigKeys(const std::string& prefix, FeatureOptions* o, ConfigRegistry
           "static background of earlier frames (carried by the ego-motion homography) instead of what moves");
   r->Bind(prefix + ".refill_reuse_corners", &o->refill_reuse_corners,
           "with refill_outside_mask: the refill chooses again among the corners the first extraction detected "
-          "off the grown mask instead of detecting them again (no second detection pass)");
+          "off the grown mask instead of detecting them again (no second detection pass), and keeps the first "
+          "extraction's descriptors where the image it describes is unchanged around them (the same values)");
   BindConfigKeys(prefix + ".lines", &o->lines, r);
 }
 

@@ -33,6 +33,8 @@ struct FeatureOptions {
   // With refill_outside_mask: the refill chooses again among the corners the frame's first
   // extraction detected (those off the grown mask) instead of detecting them again: no second
   // detection pass; cells whose corners all lie on the mask are not retried at the low threshold.
+  // A keypoint the first extraction described keeps its descriptor where the refill's image is
+  // unchanged around it (the same values, computed once).
   bool refill_reuse_corners = false;
   LineExtractorOptions lines;  // "features.lines.*": line segments beside the points
 

@@ -296,6 +296,46 @@ TEST(FeatureExtractor, FromCornersChoosesDetectedCornersOffTheMaskAndDescribesTh
   EXPECT_THROW(extractor.ExtractFromCorners(DetectedCorners{}, image, cv::Mat(), Camera{}), InputError);
 }
 
+TEST(FeatureExtractor, FromCornersReusesWhatExtractDescribedWhereThePixelsAreUnchanged) {
+  const cv::Mat image = test::TexturedImage(12);
+  const cv::Rect person(220, 120, 160, 240);
+  cv::Mat exclude(480, 640, CV_8UC1, cv::Scalar(0));
+  exclude(person).setTo(255);
+  cv::Mat filled = image.clone();  // described on: the person's pixels replaced by other texture
+  test::TexturedImage(13)(person).copyTo(filled(person));
+  FeatureExtractor extractor{FeatureOptions{}};
+  DetectedCorners corners;
+  extractor.Extract(image, cv::Mat(), Camera{}, cv::Mat(), &corners);
+  ASSERT_EQ(corners.described.size(), corners.levels.size());
+  DetectedCorners without_description = corners;
+  without_description.described.clear();
+
+  // The same features as when every keypoint is described again (the same extractor, whose
+  // pyramid buffers the first extraction's description must not share).
+  const FrameFeatures reused = extractor.ExtractFromCorners(corners, filled, cv::Mat(), Camera{}, exclude);
+  const FrameFeatures described_again =
+      FeatureExtractor{FeatureOptions{}}.ExtractFromCorners(without_description, filled, cv::Mat(), Camera{}, exclude);
+  ExpectSameFeatures(reused, described_again);
+
+  // What is reused, and where: with the earlier descriptors zeroed, the keypoints away from the
+  // replaced pixels carry zeros (taken over), those whose patch reaches them do not.
+  for (DescribedLevel& level : corners.described) level.descriptors.setTo(0);
+  const FrameFeatures marked = extractor.ExtractFromCorners(corners, filled, cv::Mat(), Camera{}, exclude);
+  ASSERT_EQ(marked.size(), reused.size());
+  int taken_over = 0;
+  for (size_t i = 0; i < marked.size(); ++i) {
+    const cv::KeyPoint& k = marked.keypoints[i];
+    const double reach = 22.0 * std::pow(1.2, k.octave);  // the rotated pattern alone, level-0 px
+    const cv::Rect2d grown(person.x - reach, person.y - reach, person.width + 2 * reach, person.height + 2 * reach);
+    const bool zero = cv::countNonZero(marked.descriptors.row(static_cast<int>(i))) == 0;
+    taken_over += zero ? 1 : 0;
+    if (grown.contains(cv::Point2d(k.pt.x, k.pt.y))) {
+      EXPECT_FALSE(zero) << k.pt << " level " << k.octave;
+    }
+  }
+  EXPECT_GT(taken_over, static_cast<int>(marked.size()) / 2);
+}
+
 TEST(FeatureExtractor, DistributionsAndDeterminism) {
   const cv::Mat image = test::DenseCornerImage(8);
   for (FeatureDistribution d :
