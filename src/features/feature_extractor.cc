@@ -13,10 +13,11 @@ namespace dynvo {
 
 namespace {
 
-constexpr int kPatchSize = 31;  // ORB descriptor patch (pixels at the keypoint's level)
-constexpr int kHalfPatch = 15;  // radius of the orientation patch
-constexpr int kEdge = 19;       // no corner closer than this to a level's border
-constexpr int kCellSize = 32;   // cells where the low FAST threshold is retried (pixels)
+constexpr int kPatchSize = 31;        // ORB descriptor patch (pixels at the keypoint's level)
+constexpr int kHalfPatch = 15;        // radius of the orientation patch
+constexpr int kEdge = 19;             // no corner closer than this to a level's border
+constexpr int kCellSize = 32;         // cells where the low FAST threshold is retried (pixels)
+constexpr int kDescriptorBytes = 32;  // an ORB descriptor (256 tests)
 
 // Intensity-centroid orientation (Rosin) in degrees [0, 360) over a circular patch.
 float CentroidAngle(const cv::Mat& image, const cv::Point2f& pt, const std::vector<int>& umax) {
@@ -208,7 +209,7 @@ void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& can
   std::vector<cv::KeyPoint>& level_keypoints = *keypoints;
   level_keypoints.clear();
   level_keypoints.reserve(chosen.size());
-  descriptors->create(static_cast<int>(chosen.size()), 32, CV_8UC1);
+  descriptors->create(static_cast<int>(chosen.size()), kDescriptorBytes, CV_8UC1);
   std::vector<int> fresh;  // the keypoints described here
   for (int i : chosen) {
     cv::KeyPoint k = candidates[i];
@@ -217,7 +218,8 @@ void FeatureExtractor::DescribeLevel(int l, const std::vector<cv::KeyPoint>& can
     const int row = earlier != nullptr && !earlier->row.empty() ? earlier->row[(*earlier_index)[i]] : -1;
     if (row >= 0 && unchanged.Around(k.pt)) {
       k.angle = earlier->angles[row];
-      earlier->descriptors.row(row).copyTo(descriptors->row(static_cast<int>(level_keypoints.size())));
+      std::copy_n(earlier->descriptors.ptr<uchar>(row), kDescriptorBytes,
+                  descriptors->ptr<uchar>(static_cast<int>(level_keypoints.size())));
     } else {
       k.angle = CentroidAngle(image, k.pt, umax_);
       fresh.push_back(static_cast<int>(level_keypoints.size()));
@@ -267,7 +269,12 @@ void FeatureExtractor::ComputeDescriptors(int l, const std::vector<cv::KeyPoint>
   orbs_[l]->compute(image(box), in_box, computed);
   if (in_box.size() != fresh.size())
     throw std::logic_error("FeatureExtractor: ORB dropped keypoints inside the border");
-  for (size_t j = 0; j < fresh.size(); ++j) computed.row(static_cast<int>(j)).copyTo(descriptors->row(fresh[j]));
+  if (fresh.size() == keypoints.size()) {  // all of them, in order
+    *descriptors = computed;
+    return;
+  }
+  for (size_t j = 0; j < fresh.size(); ++j)
+    std::copy_n(computed.ptr<uchar>(static_cast<int>(j)), kDescriptorBytes, descriptors->ptr<uchar>(fresh[j]));
 }
 
 void FeatureExtractor::BuildPyramid(const cv::Mat& gray, const cv::Mat& depth, const cv::Mat& exclude) {
@@ -353,7 +360,7 @@ FrameFeatures FeatureExtractor::Assemble(const std::vector<std::vector<cv::KeyPo
   for (const cv::Mat& d : level_descriptors)
     if (!d.empty()) nonempty.push_back(d);
   if (nonempty.empty())
-    out.descriptors = cv::Mat(0, 32, CV_8UC1);
+    out.descriptors = cv::Mat(0, kDescriptorBytes, CV_8UC1);
   else
     cv::vconcat(nonempty, out.descriptors);
 
