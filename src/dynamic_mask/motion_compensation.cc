@@ -50,16 +50,21 @@ bool TargetBoxOf(const cv::Rect& source_box, const Eigen::Matrix3d& target_from_
 }  // namespace
 
 void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
-                    cv::Mat* warped) {
+                    cv::Mat* warped, const cv::Rect& within) {
   if (mask.empty() || mask.type() != CV_8UC1) throw InputError("WarpBinaryMask needs a non-empty CV_8UC1 mask");
   if (!target_from_source.allFinite()) throw InputError("WarpBinaryMask: homography is not finite");
   const cv::Rect source_box = cv::boundingRect(mask);  // of the non-zero pixels
+  const cv::Rect image(cv::Point(0, 0), size);
   cv::Rect target_box;
   if (source_box.area() > 0 && !TargetBoxOf(source_box, target_from_source, size, &target_box)) {
-    cv::warpPerspective(mask, *warped, ToCv(target_from_source), size, cv::INTER_NEAREST, cv::BORDER_CONSTANT,
-                        cv::Scalar(0));
-    return;
+    if (within.area() == 0) {
+      cv::warpPerspective(mask, *warped, ToCv(target_from_source), size, cv::INTER_NEAREST, cv::BORDER_CONSTANT,
+                          cv::Scalar(0));
+      return;
+    }
+    target_box = image;  // reachable anywhere: cut to `within` below
   }
+  if (within.area() > 0) target_box &= within;
   warped->create(size, CV_8UC1);
   warped->setTo(0);
   if (source_box.area() == 0 || target_box.area() == 0) return;

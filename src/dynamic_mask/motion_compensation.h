@@ -36,9 +36,11 @@ void CompensateMotionInBox(const cv::Mat& source, const Eigen::Matrix3d& target_
 
 // A CV_8UC1 binary `mask` warped by `target_from_source` into an image of `size` (nearest
 // neighbour, 0 where there is no source). The same result as a full cv::warpPerspective, computed
-// only over the part of the target that the mask's non-zero pixels can reach.
+// only over the part of the target that the mask's non-zero pixels can reach. With a non-empty
+// `within`, only the target pixels inside it are warped (for a caller that reads no others);
+// the rest are 0.
 void WarpBinaryMask(const cv::Mat& mask, const Eigen::Matrix3d& target_from_source, const cv::Size& size,
-                    cv::Mat* warped);
+                    cv::Mat* warped, const cv::Rect& within = cv::Rect());
 
 // WarpBinaryMask of each of up to 8 `masks` (CV_8UC1, same size; empty ones give empty results)
 // with a single warp: each mask is one bit plane of a packed image, which nearest-neighbour

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
 #include "core/stopwatch.h"
 #include "dynamic_mask/mask_regions.h"
 #include "dynamic_mask/motion_compensation.h"
@@ -21,11 +23,9 @@ void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   const auto start = SteadyClock::now();
   const bool carry_occlusion = !occlusion_.empty() && mask->has_motion;
   const bool carry_explained = trim_options_.enabled && !explained_.empty() && mask->has_motion;
-  std::vector<cv::Mat> carried(3);  // occlusion, kept occlusion, explained (empty: not carried)
-  if (carry_occlusion || carry_explained)
-    carried = WarpBinaryMasks({carry_occlusion ? occlusion_ : cv::Mat(), carry_occlusion ? kept_occlusion_ : cv::Mat(),
-                               carry_explained ? explained_ : cv::Mat()},
-                              mask->current_from_previous, frame.gray.size());
+  std::vector<cv::Mat> carried(2);  // occlusion, kept occlusion (empty: not carried)
+  if (carry_occlusion)
+    carried = WarpBinaryMasks({occlusion_, kept_occlusion_}, mask->current_from_previous, frame.gray.size());
   if (carry_occlusion) {
     cv::Mat seeds = MaskUnion(mask->mask, mask->change_seeds);
     if (!kept_occlusion_.empty()) seeds = MaskUnion(seeds, carried[1]);
@@ -37,8 +37,11 @@ void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   } else {
     kept_occlusion_.release();  // a gap: what was kept is no longer where the next frame's H puts it
   }
-  const cv::Mat& explained = carried[2];
-  if (!explained.empty() && !mask->mask.empty() && !frame.depth.empty() && cv::countNonZero(mask->mask) > 0) {
+  const cv::Rect mask_box = mask->mask.empty() ? cv::Rect() : cv::boundingRect(mask->mask);
+  if (carry_explained && !frame.depth.empty() && mask_box.area() > 0) {
+    // The trim reads what the map explains only on the mask: carried into the mask's box alone.
+    cv::Mat explained;
+    WarpBinaryMask(explained_, mask->current_from_previous, frame.gray.size(), &explained, mask_box);
     mask->mask = TrimMaskToNearSurface(mask->mask, frame.depth, explained, trim_options_);
     mask->refined = true;
   }

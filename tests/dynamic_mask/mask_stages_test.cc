@@ -100,6 +100,14 @@ TEST(WarpBinaryMask, EqualsAFullNearestWarp) {
     cv::warpPerspective(mask, full, test::ToMatx(h), kImage, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
     WarpBinaryMask(mask, h, kImage, &fast);
     ASSERT_EQ(CountDifferent(full, fast), 0) << "trial " << trial;
+    // Within a box: the full warp there, 0 elsewhere.
+    const cv::Rect within(rng.uniform(-50, 600), rng.uniform(-50, 440), rng.uniform(1, 300), rng.uniform(1, 300));
+    cv::Mat in_box;
+    WarpBinaryMask(mask, h, kImage, &in_box, within);
+    cv::Mat expected = cv::Mat::zeros(kImage, CV_8UC1);
+    const cv::Rect inside = within & cv::Rect(cv::Point(0, 0), kImage);
+    full(inside).copyTo(expected(inside));
+    ASSERT_EQ(CountDifferent(expected, in_box), 0) << "trial " << trial << " within " << within;
   }
   cv::Mat out;
   EXPECT_THROW(WarpBinaryMask(cv::Mat(), Eigen::Matrix3d::Identity(), kImage, &out), InputError);
