@@ -23,10 +23,10 @@ void StaticMapRefinement::Refine(const RgbdFrame& frame, MaskPacket* mask) {
   const auto start = SteadyClock::now();
   const bool carry_occlusion = !occlusion_.empty() && mask->has_motion;
   const bool carry_explained = trim_options_.enabled && !explained_.empty() && mask->has_motion;
-  std::vector<cv::Mat> carried(2);  // occlusion, kept occlusion (empty: not carried)
-  if (carry_occlusion)
-    carried = WarpBinaryMasks({occlusion_, kept_occlusion_}, mask->current_from_previous, frame.gray.size());
   if (carry_occlusion) {
+    // The occlusion and the kept occlusion (empty: none kept), in one warp.
+    const std::vector<cv::Mat> carried =
+        WarpBinaryMasks({occlusion_, kept_occlusion_}, mask->current_from_previous, frame.gray.size());
     cv::Mat seeds = MaskUnion(mask->mask, mask->change_seeds);
     if (!kept_occlusion_.empty()) seeds = MaskUnion(seeds, carried[1]);
     mask->map_occlusion_candidates = carried[0];
